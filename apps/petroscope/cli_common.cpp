@@ -1,0 +1,38 @@
+#include "cli_common.hpp"
+
+#include "petroscope/io/json_sidecar.hpp"
+
+#include <cstdio>
+#include <iostream>
+#include <unistd.h>
+
+namespace petroscope::cli {
+
+void show_progress(const std::string& label, double fraction_done) {
+    static const bool terminal = ::isatty(STDERR_FILENO) != 0;
+    if (!terminal) return;
+    const int percent = static_cast<int>(100.0 * fraction_done);
+    std::fprintf(stderr, "\r%s %3d%%", label.c_str(), percent);
+    if (fraction_done >= 1.0) std::fprintf(stderr, "\n");
+    std::fflush(stderr);
+}
+
+ImageResult::ImageResult(const std::filesystem::path& output)
+    : output_(output), format_(image_format_for(output)) {
+    image_temporary_ = pending_.add(output_);
+    sidecar_temporary_ = pending_.add(sidecar_path(output_));
+}
+
+void ImageResult::write(const Image& linear_rgb, const nlohmann::json& sidecar) {
+    write_image(linear_rgb, image_temporary_, format_);
+    write_json_file(sidecar, sidecar_temporary_);
+    pending_.commit();
+}
+
+std::string joined_command_line(int argc, char** argv) {
+    std::string line;
+    for (int i = 0; i < argc; ++i) line += (i ? " " : "") + std::string(argv[i]);
+    return line;
+}
+
+}  // namespace petroscope::cli

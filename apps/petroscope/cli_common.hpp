@@ -1,0 +1,40 @@
+#pragma once
+// Pieces every petroscope subcommand uses: error reporting, progress, and all-or-nothing output.
+#include "petroscope/core/image.hpp"
+#include "petroscope/io/atomic_file.hpp"
+#include "petroscope/io/image_writer.hpp"
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <functional>
+#include <string>
+
+namespace petroscope::cli {
+
+/// A progress line on standard error ("rendering  42%"), drawn only when it is a terminal.
+void show_progress(const std::string& label, double fraction_done);
+
+/// An image result and its JSON sidecar, reserved before the work starts (so an unwritable path fails at
+/// once) and written under temporary names, renamed together at the end.
+class ImageResult {
+public:
+    explicit ImageResult(const std::filesystem::path& output);
+    void write(const Image& linear_rgb, const nlohmann::json& sidecar);
+    const std::filesystem::path& path() const { return output_; }
+
+private:
+    std::filesystem::path output_;
+    ImageFormat format_;
+    PendingOutputs pending_;
+    std::filesystem::path image_temporary_, sidecar_temporary_;
+};
+
+/// The command line as one string, for sidecars.
+std::string joined_command_line(int argc, char** argv);
+
+void add_minerals_command(CLI::App& app, std::string& minerals_dir);
+void add_conoscope_command(CLI::App& app, const std::string& minerals_dir, const std::string& command_line);
+
+}  // namespace petroscope::cli

@@ -1,0 +1,40 @@
+// petroscope: a physically exact simulator of the polarizing microscope. This file only wires the
+// subcommands together; each lives in its own command_*.cpp.
+#include "cli_common.hpp"
+
+#include "petroscope/core/error.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <exception>
+#include <iostream>
+
+int main(int argc, char** argv) {
+    CLI::App app{
+        "petroscope: a physically exact simulator of the petrographic (polarizing) microscope.\n"
+        "Interference figures are computed per wavelength from the exact eigenmodes of the crystal.\n\n"
+        "Examples:\n"
+        "  petroscope conoscope -o figure.png                       (muscovite, acute bisectrix, white light)\n"
+        "  petroscope conoscope --mineral calcite --thickness 30um --wavelength 589nm -o calcite.png\n"
+        "  petroscope minerals                                       (list the minerals)\n"
+        "  petroscope minerals show quartz --wavelength 589nm --json"};
+    app.require_subcommand(1);
+    app.set_version_flag("--version", "petroscope 0.1.0");
+    std::string minerals_dir;
+    app.add_option("--minerals-dir", minerals_dir, "Folder of mineral records (default: $PETROSCOPE_MINERALS or the minerals/ folder of the source tree)");
+    const std::string command_line = petroscope::cli::joined_command_line(argc, argv);
+    petroscope::cli::add_minerals_command(app, minerals_dir);
+    petroscope::cli::add_conoscope_command(app, minerals_dir, command_line);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    } catch (const petroscope::InputError& e) {
+        std::cerr << "petroscope: error: " << e.what() << '\n';
+        return 2;
+    } catch (const std::exception& e) {
+        std::cerr << "petroscope: internal error: " << e.what() << '\n';
+        return 3;
+    }
+    return 0;
+}

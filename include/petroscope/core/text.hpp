@@ -1,0 +1,22 @@
+#pragma once
+// Small text helpers shared by the parsers (mineral files, CSV tables, CLI values).
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace petroscope {
+
+std::string_view trim(std::string_view text);
+std::string to_lower(std::string_view text);
+std::vector<std::string> split(std::string_view text, char separator);
+/// Splits on runs of spaces and tabs.
+std::vector<std::string> split_whitespace(std::string_view text);
+
+/// The whole of `text` as a finite double, or nothing (no partial parses, no NaN/Inf).
+std::optional<double> parse_double(std::string_view text);
+
+/// Levenshtein edit distance, for "did you mean" suggestions.
+std::size_t edit_distance(std::string_view a, std::string_view b);
+
+}  // namespace petroscope

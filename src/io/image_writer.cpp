@@ -1,0 +1,72 @@
+#include "petroscope/io/image_writer.hpp"
+
+#include "petroscope/core/error.hpp"
+#include "petroscope/core/text.hpp"
+#include "petroscope/spectral/color.hpp"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+namespace petroscope {
+
+ImageFormat image_format_for(const std::filesystem::path& path) {
+    const std::string extension = to_lower(path.extension().string());
+    if (extension == ".png") return ImageFormat::png;
+    if (extension == ".exr") return ImageFormat::exr;
+    if (extension == ".tif" || extension == ".tiff") return ImageFormat::tiff;
+    throw InputError("output " + path.string() + ": unknown image type '" + extension +
+                     "' (expected .png for viewing, or .exr, .tif, .tiff for float data)");
+}
+
+std::string image_format_name(ImageFormat format) {
+    switch (format) {
+        case ImageFormat::png: return "png";
+        case ImageFormat::exr: return "openexr";
+        case ImageFormat::tiff: return "tiff";
+    }
+    return "png";
+}
+
+void write_image(const Image& linear_rgb, const std::filesystem::path& path, ImageFormat format) {
+    if (linear_rgb.channels != 3) throw InputError("internal: write_image expects 3 channels");
+    auto output = OIIO::ImageOutput::create(image_format_name(format));
+    if (!output) throw InputError("cannot write " + path.string() + ": no " + image_format_name(format) + " writer (" + OIIO::geterror() + ")");
+    const bool display = format == ImageFormat::png;
+    OIIO::ImageSpec spec(linear_rgb.width, linear_rgb.height, 3, display ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
+    spec.attribute("Software", "petroscope");
+    if (display) {
+        spec.attribute("oiio:ColorSpace", "sRGB");
+    } else {
+        spec.attribute("oiio:ColorSpace", "linear");
+        if (format == ImageFormat::tiff) spec.attribute("compression", "zip");
+    }
+    bool ok = output->open(path.string(), spec);
+    if (ok && display) {
+        std::vector<std::uint8_t> encoded(linear_rgb.pixels.size());
+        std::transform(linear_rgb.pixels.begin(), linear_rgb.pixels.end(), encoded.begin(), [](float value) {
+            const double clamped = std::clamp(static_cast<double>(value), 0.0, 1.0);
+            return static_cast<std::uint8_t>(std::lround(255.0 * encode_srgb(clamped)));
+        });
+        ok = output->write_image(OIIO::TypeDesc::UINT8, encoded.data());
+    } else if (ok) {
+        ok = output->write_image(OIIO::TypeDesc::FLOAT, linear_rgb.pixels.data());
+    }
+    ok = output->close() && ok;
+    if (!ok) throw InputError("cannot write " + path.string() + ": " + output->geterror());
+}
+
+Image read_image(const std::filesystem::path& path) {
+    auto input = OIIO::ImageInput::open(path.string());
+    if (!input) throw InputError("cannot read image " + path.string() + ": " + OIIO::geterror());
+    const OIIO::ImageSpec& spec = input->spec();
+    Image image(spec.width, spec.height, spec.nchannels);
+    const bool ok = input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data());
+    input->close();
+    if (!ok) throw InputError("cannot read image " + path.string() + ": " + input->geterror());
+    return image;
+}
+
+}  // namespace petroscope

@@ -1,0 +1,189 @@
+#include "petroscope/optics/slab.hpp"
+
+#include "petroscope/optics/eigenmodes.hpp"
+
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace petroscope {
+namespace {
+
+// The sheet equation g_σ(q) = A|N|² + B(N·b₁)(N·b₂) + σB|N × b₁||N × b₂| − 1 with N = (ξ, q),
+// A = (a + c)/2, B = (a − c)/2, σ = +1 fast, −1 slow: the Biot–Fresnel form of eigenmodes.hpp
+// multiplied by |N|² (|N|²c₁c₂ = (N·b₁)(N·b₂), |N|²s₁s₂ = |N × b₁||N × b₂|), so that its roots are
+// the k_z/k₀ of the modes on that sheet.
+struct SheetEquation {
+    double a_half_sum, b_half_difference, sigma;
+    double xi2;          // |ξ|²
+    double u1, u2;       // ξ·b₁, ξ·b₂ (tangential parts)
+    double b1z, b2z;     // z components of the binormals
+
+    double value(double q, double* derivative) const {
+        const double n2 = xi2 + q * q;
+        const double nb1 = u1 + q * b1z;
+        const double nb2 = u2 + q * b2z;
+        const double p1 = std::max(n2 - nb1 * nb1, 0.0);  // |N × b₁|²
+        const double p2 = std::max(n2 - nb2 * nb2, 0.0);
+        const double root = std::sqrt(p1 * p2);
+        const double g = a_half_sum * n2 + b_half_difference * (nb1 * nb2 + sigma * root) - 1.0;
+        const double dp1 = 2.0 * (q - nb1 * b1z);
+        const double dp2 = 2.0 * (q - nb2 * b2z);
+        const double droot = root > 0.0 ? 0.5 * (dp1 * p2 + p1 * dp2) / root : 0.0;
+        *derivative = 2.0 * a_half_sum * q + b_half_difference * (b1z * nb2 + b2z * nb1 + sigma * droot);
+        return g;
+    }
+};
+
+// Root of the sheet equation between `end_a` (where g < 0: q = 0) and `end_b` (where g > 0), by Newton's
+// method kept inside the shrinking bracket; bisection whenever a Newton step would leave it.
+double solve_bracketed(const SheetEquation& equation, double end_a, double end_b, double guess) {
+    double negative_end = end_a;
+    double positive_end = end_b;
+    double q = (std::isfinite(guess) && (guess - end_a) * (guess - end_b) < 0.0) ? guess : 0.5 * (end_a + end_b);
+    for (int iteration = 0; iteration < 200; ++iteration) {
+        double derivative = 0.0;
+        const double g = equation.value(q, &derivative);
+        if (g == 0.0) return q;
+        (g < 0.0 ? negative_end : positive_end) = q;
+        double next = q - g / derivative;
+        const bool inside = (next - negative_end) * (next - positive_end) < 0.0;
+        if (!inside || !std::isfinite(next)) next = 0.5 * (negative_end + positive_end);
+        if (std::abs(next - q) <= 2.0 * std::numeric_limits<double>::epsilon() * std::abs(q) ||
+            next == negative_end || next == positive_end) {
+            return next;
+        }
+        q = next;
+    }
+    return q;
+}
+
+// Uniaxial crystal (b₂ = ±b₁ = ±b): |N × b₁||N × b₂| = |N|² − (N·b)², so g_σ is the quadratic
+// αq² + βq + γ; returns its (larger, smaller) roots, or NaN when they are complex (evanescent).
+Eigen::Vector2d quadratic_roots(const SheetEquation& e, double orientation_sign) {
+    const double level = e.a_half_sum + e.sigma * e.b_half_difference;
+    const double cross = e.b_half_difference * (orientation_sign - e.sigma);
+    const double alpha = level + cross * e.b1z * e.b1z;
+    const double beta = 2.0 * cross * e.u1 * e.b1z;
+    const double gamma = level * e.xi2 + cross * e.u1 * e.u1 - 1.0;
+    const double discriminant = beta * beta - 4.0 * alpha * gamma;
+    if (discriminant < 0.0) return Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
+    // Numerically stable form (Press et al., Numerical Recipes, §5.6).
+    const double t = -0.5 * (beta + std::copysign(std::sqrt(discriminant), beta));
+    const double r1 = t / alpha;
+    const double r2 = t != 0.0 ? gamma / t : -r1;
+    return {std::max(r1, r2), std::min(r1, r2)};
+}
+
+SlabMode make_mode(const BinormalFrame& frame, const TangentialWavevector& direction, double q, int sheet) {
+    const Eigen::Vector3d n_vector(direction.xi.x(), direction.xi.y(), q);
+    const Eigen::Vector3d k_hat = n_vector.normalized();
+    const auto [d_fast, d_slow] = vibration_directions(frame, k_hat);
+    const Eigen::Vector3d e_field = frame.impermeability * (sheet == 0 ? d_fast : d_slow);
+    const Eigen::Vector3d h_field = n_vector.cross(e_field);  // H = N × E (units of √(ε₀/μ₀))
+    const Eigen::Vector3d radial(direction.radial.x(), direction.radial.y(), 0.0);
+    const Eigen::Vector3d azimuthal(direction.azimuthal.x(), direction.azimuthal.y(), 0.0);
+    SlabMode mode;
+    mode.q = q;
+    mode.psi = {e_field.dot(radial), h_field.dot(azimuthal), e_field.dot(azimuthal), -h_field.dot(radial)};
+    return mode;
+}
+
+// Amplitudes (s, p) of the forward (`sign` = +1) or backward (−1) plane waves of an isotropic medium of
+// index n whose sum has the tangential field ψ. Forward s: ψ = (0, 0, 1, Q); forward p (unit E):
+// ψ = (Q/n, n, 0, 0); the backward waves flip the sign of Q (Q = √(n² − |ξ|²)).
+Eigen::Vector2d isotropic_amplitudes(const Eigen::Vector4d& psi, double n, double big_q, double sign) {
+    return {0.5 * (psi[2] + sign * psi[3] / big_q), 0.5 * (psi[0] * n / big_q + sign * psi[1] / n)};
+}
+
+Eigen::Matrix2d isotropic_amplitudes(const SlabMode& first, const SlabMode& second, double n, double big_q,
+                                     double sign) {
+    Eigen::Matrix2d amplitudes;
+    amplitudes.col(0) = isotropic_amplitudes(first.psi, n, big_q, sign);
+    amplitudes.col(1) = isotropic_amplitudes(second.psi, n, big_q, sign);
+    return amplitudes;
+}
+
+}  // namespace
+
+TangentialWavevector TangentialWavevector::from_xi(const Eigen::Vector2d& xi) {
+    TangentialWavevector direction;
+    direction.xi = xi;
+    const double length = xi.norm();
+    if (length > 0.0) direction.radial = xi / length;
+    direction.azimuthal = {-direction.radial.y(), direction.radial.x()};
+    return direction;
+}
+
+SlabModes solve_slab_modes(const BinormalFrame& frame, const TangentialWavevector& direction,
+                           const Eigen::Vector2d& forward_guess) {
+    SlabModes modes;
+    const double n_max = 1.0 / std::sqrt(frame.c);
+    for (int sheet = 0; sheet < 2; ++sheet) {
+        SheetEquation equation{0.5 * (frame.a + frame.c),
+                               0.5 * (frame.a - frame.c),
+                               sheet == 0 ? 1.0 : -1.0,
+                               direction.xi.squaredNorm(),
+                               direction.xi.dot(frame.binormal_1.head<2>()),
+                               direction.xi.dot(frame.binormal_2.head<2>()),
+                               frame.binormal_1.z(),
+                               frame.binormal_2.z()};
+        double forward_q = 0.0;
+        double backward_q = 0.0;
+        double derivative = 0.0;
+        if (equation.value(0.0, &derivative) >= 0.0) {
+            // |ξ| reaches the sheet's index: no propagating mode on this sheet.
+            modes.propagating = false;
+            continue;
+        }
+        if (frame.uniaxial()) {
+            const Eigen::Vector2d roots = quadratic_roots(equation, frame.binormal_1.dot(frame.binormal_2));
+            forward_q = roots[0];
+            backward_q = roots[1];
+        } else {
+            const double limit = 2.0 * n_max;  // g(±2 n_max) > 0: the roots lie inside
+            forward_q = solve_bracketed(equation, 0.0, limit, forward_guess[sheet]);
+            backward_q = solve_bracketed(equation, 0.0, -limit, std::numeric_limits<double>::quiet_NaN());
+        }
+        modes.forward[sheet] = make_mode(frame, direction, forward_q, sheet);
+        modes.backward[sheet] = make_mode(frame, direction, backward_q, sheet);
+    }
+    return modes;
+}
+
+SlabTransfer slab_transfer(const SlabModes& modes, const TangentialWavevector& direction, double n_entrance,
+                           double n_exit) {
+    SlabTransfer transfer;
+    transfer.propagating = modes.propagating;
+    if (!modes.propagating) return transfer;
+    const double xi2 = direction.xi.squaredNorm();
+    const double q_entrance = std::sqrt(n_entrance * n_entrance - xi2);
+    const double q_exit = std::sqrt(n_exit * n_exit - xi2);
+    transfer.q = {modes.forward[0].q, modes.forward[1].q};
+    // Entrance face: incident + reflected = Σ tₘ ψₘ⁺; the forward projection removes the reflected
+    // waves, so (incident s, p) = F·t with F = forward amplitudes of the crystal modes.
+    const Eigen::Matrix2d f = isotropic_amplitudes(modes.forward[0], modes.forward[1], n_entrance, q_entrance, 1.0);
+    transfer.entry = f.inverse();
+    // Exit face: Σ uₘψₘ⁺ + Σ rⱼψⱼ⁻ = transmitted forward waves only. Their backward projection vanishes:
+    // r = −(A⁻Ψ⁻)⁻¹(A⁻Ψ⁺)u, and the transmitted amplitudes are A⁺(Ψ⁺u + Ψ⁻r).
+    const Eigen::Matrix2d forward_plus = isotropic_amplitudes(modes.forward[0], modes.forward[1], n_exit, q_exit, 1.0);
+    const Eigen::Matrix2d forward_minus = isotropic_amplitudes(modes.forward[0], modes.forward[1], n_exit, q_exit, -1.0);
+    const Eigen::Matrix2d backward_plus = isotropic_amplitudes(modes.backward[0], modes.backward[1], n_exit, q_exit, 1.0);
+    const Eigen::Matrix2d backward_minus = isotropic_amplitudes(modes.backward[0], modes.backward[1], n_exit, q_exit, -1.0);
+    transfer.exit = forward_plus - backward_plus * backward_minus.inverse() * forward_minus;
+    return transfer;
+}
+
+Eigen::Matrix2cd slab_jones(const SlabTransfer& transfer, double wavelength_nm, double thickness_um) {
+    if (!transfer.propagating) return Eigen::Matrix2cd::Zero();
+    const double k0_thickness = 2.0 * std::numbers::pi * thickness_um * 1e3 / wavelength_nm;
+    Eigen::Matrix2cd propagation = Eigen::Matrix2cd::Zero();
+    propagation(0, 0) = std::polar(1.0, k0_thickness * transfer.q[0]);
+    propagation(1, 1) = std::polar(1.0, k0_thickness * transfer.q[1]);
+    return transfer.exit.cast<std::complex<double>>() * propagation * transfer.entry.cast<std::complex<double>>();
+}
+
+}  // namespace petroscope

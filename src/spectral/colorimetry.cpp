@@ -1,0 +1,56 @@
+#include "petroscope/spectral/colorimetry.hpp"
+
+#include "petroscope/core/error.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace petroscope {
+
+double planck_relative_radiance(double wavelength_nm, double temperature_k) {
+    // Second radiation constant c₂ = hc/k = 1.438776877e-2 m·K (CODATA 2018).
+    constexpr double c2_nm_k = 1.438776877e7;
+    const double wavelength_um = wavelength_nm * 1e-3;
+    return 1.0 / (std::pow(wavelength_um, 5) * std::expm1(c2_nm_k / (wavelength_nm * temperature_k)));
+}
+
+LightSource blackbody_source(double temperature_k) {
+    if (!(temperature_k > 0.0) || !std::isfinite(temperature_k)) {
+        throw InputError("blackbody temperature must be a positive number of kelvin");
+    }
+    return LightSource{"blackbody:" + std::to_string(static_cast<long>(std::lround(temperature_k))) + "K",
+                       [temperature_k](double nm) { return planck_relative_radiance(nm, temperature_k); }};
+}
+
+SpectralIntegrator::SpectralIntegrator(const std::vector<double>& wavelengths_nm,
+                                       const ColorMatchingFunctions& cmf, const LightSource& source) {
+    if (wavelengths_nm.empty()) throw std::invalid_argument("SpectralIntegrator needs wavelengths");
+    // On a uniform grid the band width Δλ is common to numerator and normalisation and cancels.
+    weights_.resize(wavelengths_nm.size());
+    double normalisation = 0.0;
+    for (std::size_t i = 0; i < wavelengths_nm.size(); ++i) {
+        const double lambda = wavelengths_nm[i];
+        const double power = source.relative_power(lambda);
+        if (!(power >= 0.0) || !std::isfinite(power)) {
+            throw InputError("light source " + source.name + " has no valid power at " + std::to_string(lambda) + " nm");
+        }
+        weights_[i] = power * Eigen::Vector3d(cmf.x_bar(lambda), cmf.y_bar(lambda), cmf.z_bar(lambda));
+        normalisation += weights_[i].y();
+    }
+    if (!(normalisation > 0.0)) {
+        throw InputError("the wavelength grid sees no light: the source times ȳ is zero on every sample");
+    }
+    for (auto& weight : weights_) {
+        weight /= normalisation;
+        white_xyz_ += weight;
+    }
+}
+
+Eigen::Vector3d SpectralIntegrator::integrate(const std::vector<double>& transmission) const {
+    if (transmission.size() != weights_.size()) throw std::invalid_argument("transmission size differs from the grid");
+    Eigen::Vector3d xyz = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i < weights_.size(); ++i) xyz += transmission[i] * weights_[i];
+    return xyz;
+}
+
+}  // namespace petroscope

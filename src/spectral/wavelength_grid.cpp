@@ -1,0 +1,44 @@
+#include "petroscope/spectral/wavelength_grid.hpp"
+
+#include "petroscope/core/error.hpp"
+#include "petroscope/core/text.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace petroscope {
+
+int WavelengthGrid::size() const {
+    // The tolerance keeps END itself when (END − START)/STEP is an integer up to rounding.
+    return static_cast<int>(std::floor((end_nm - start_nm) / step_nm + 1e-9)) + 1;
+}
+
+std::vector<double> WavelengthGrid::wavelengths_nm() const {
+    std::vector<double> wavelengths(static_cast<std::size_t>(size()));
+    for (std::size_t i = 0; i < wavelengths.size(); ++i) wavelengths[i] = start_nm + step_nm * static_cast<double>(i);
+    return wavelengths;
+}
+
+WavelengthGrid WavelengthGrid::monochromatic(double wavelength_nm) {
+    return WavelengthGrid{wavelength_nm, wavelength_nm, 1.0};
+}
+
+WavelengthGrid WavelengthGrid::parse(std::string_view text) {
+    const auto parts = split(text, ':');
+    const auto fail = [&](const std::string& why) {
+        return InputError("invalid wavelength grid '" + std::string(text) + "': " + why +
+                          " (expected START:END:STEP in nm, e.g. 380:780:5)");
+    };
+    if (parts.size() != 3) throw fail("three numbers separated by ':' are needed");
+    const auto start = parse_double(parts[0]);
+    const auto end = parse_double(parts[1]);
+    const auto step = parse_double(parts[2]);
+    if (!start || !end || !step) throw fail("not a number");
+    if (*start <= 0.0 || *end < *start) throw fail("need 0 < START <= END");
+    if (*step <= 0.0) throw fail("STEP must be > 0");
+    WavelengthGrid grid{*start, *end, *step};
+    if (grid.size() > 100000) throw fail("more than 100000 wavelengths");
+    return grid;
+}
+
+}  // namespace petroscope

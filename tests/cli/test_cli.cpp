@@ -1,0 +1,256 @@
+// The petroscope command-line tool, run as a user would: exit codes, messages, JSON output, and the promise
+// that a failed command leaves no output and no temporary file behind.
+#include "petroscope/core/image.hpp"
+#include "petroscope/io/data_files.hpp"
+#include "petroscope/io/image_writer.hpp"
+#include "petroscope/minerals/mineral.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <atomic>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <vector>
+
+namespace petroscope {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_text(const fs::path& path) {
+    std::ifstream file(path, std::ios::binary);
+    std::ostringstream text;
+    text << file.rdbuf();
+    return text.str();
+}
+
+std::string quoted(const fs::path& path) { return "'" + path.string() + "'"; }
+
+// Every name in `folder`, hidden ones (".x.tmp-…") included.
+std::set<std::string> listing(const fs::path& folder) {
+    std::set<std::string> names;
+    for (const auto& entry : fs::directory_iterator(folder)) names.insert(entry.path().filename().string());
+    return names;
+}
+
+struct Run {
+    int exit_code = -1;
+    std::string out, err;
+};
+
+// A scratch folder per test under PETROSCOPE_TEST_OUTPUT_DIR: out/ receives the images, logs/ the captured
+// standard output and error (kept apart so that out/ lists only what petroscope wrote). Removed at the end.
+class Cli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        static std::atomic<int> counter{0};
+        scratch_ = fs::path(PETROSCOPE_TEST_OUTPUT_DIR) /
+                   ("cli-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" +
+                    ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(scratch_);
+        fs::create_directories(out());
+        fs::create_directories(scratch_ / "logs");
+    }
+    void TearDown() override {
+        std::error_code ignored;
+        fs::remove_all(scratch_, ignored);
+    }
+
+    fs::path out() const { return scratch_ / "out"; }
+    const fs::path& scratch() const { return scratch_; }
+
+    // Runs `petroscope ARGUMENTS` with the environment overrides removed (so the shipped data is used).
+    Run petroscope(const std::string& arguments) {
+        const fs::path out_log = scratch_ / "logs" / "stdout.txt";
+        const fs::path err_log = scratch_ / "logs" / "stderr.txt";
+        const std::string command = "env -u PETROSCOPE_MINERALS -u PETROSCOPE_DATA_DIR " + quoted(PETROSCOPE_BINARY) +
+                                    " " + arguments + " > " + quoted(out_log) + " 2> " + quoted(err_log) + " < /dev/null";
+        const int status = std::system(command.c_str());
+        Run run;
+        run.exit_code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
+        run.out = read_text(out_log);
+        run.err = read_text(err_log);
+        return run;
+    }
+
+    // A conoscope command that must fail: non-zero exit, every `expected` text in the message, and out/
+    // exactly as before (no image, no sidecar, no ".NAME.tmp-*" file).
+    void expect_rejected(const std::string& arguments, const std::vector<std::string>& expected) {
+        SCOPED_TRACE("petroscope " + arguments);
+        const std::set<std::string> before = listing(out());
+        const Run run = petroscope(arguments);
+        EXPECT_NE(run.exit_code, 0);
+        EXPECT_NE(run.exit_code, -1) << "did not exit normally";
+        for (const std::string& text : expected) {
+            EXPECT_NE(run.err.find(text), std::string::npos) << "'" << text << "' not in stderr: " << run.err;
+        }
+        EXPECT_EQ(listing(out()), before);
+    }
+
+private:
+    fs::path scratch_;
+};
+
+const std::set<std::string> kMineralNames{
+    "quartz", "calcite", "muscovite", "biotite", "forsterite", "fayalite", "augite", "hornblende", "albite",
+    "anorthite", "orthoclase", "almandine", "aragonite", "gypsum", "topaz", "zircon", "tourmaline", "apatite",
+    "kyanite", "sillimanite", "sapphire", "rutile", "KTP", "LBO", "KGd(WO4)2", "BBO", "LiNbO3", "YVO4"};
+
+TEST_F(Cli, MineralsListsAll28) {
+    const Run run = petroscope("minerals");
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    std::istringstream lines(run.out);
+    std::string line;
+    std::getline(lines, line);  // header
+    EXPECT_EQ(line.rfind("name", 0), 0u) << line;
+    std::set<std::string> listed;
+    int rows = 0;
+    while (std::getline(lines, line)) {
+        if (line.empty()) continue;
+        ++rows;
+        listed.insert(line.substr(0, line.find(' ')));
+    }
+    EXPECT_EQ(rows, 28);
+    EXPECT_EQ(listed, kMineralNames);
+}
+
+TEST_F(Cli, MineralsShowJson) {
+    const Run run = petroscope("minerals show quartz --json");
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const nlohmann::json quartz = nlohmann::json::parse(run.out);  // throws (fails the test) if not JSON
+    for (const char* key : {"n_alpha", "n_beta", "n_gamma", "two_v_deg", "sign", "birefringence"}) {
+        EXPECT_TRUE(quartz.contains(key)) << key;
+    }
+    EXPECT_EQ(quartz["name"], "quartz");
+    EXPECT_EQ(quartz["sign"], "+");
+    EXPECT_EQ(quartz["two_v_deg"].get<double>(), 0.0);
+    EXPECT_EQ(quartz["wavelength_nm"].get<double>(), 589.3);
+    // The same numbers as the library (nlohmann writes doubles that read back exactly).
+    const MineralCatalog catalog = load_mineral_catalog(PETROSCOPE_SOURCE_DIR "/minerals");
+    const OpticalSummary summary = optical_summary(catalog.find("quartz"), 589.3);
+    EXPECT_EQ(quartz["n_alpha"].get<double>(), summary.n_alpha);
+    EXPECT_EQ(quartz["n_beta"].get<double>(), summary.n_beta);
+    EXPECT_EQ(quartz["n_gamma"].get<double>(), summary.n_gamma);
+    EXPECT_EQ(quartz["birefringence"].get<double>(), summary.birefringence);
+
+    const Run muscovite_run = petroscope("minerals show muscovite --json");
+    ASSERT_EQ(muscovite_run.exit_code, 0) << muscovite_run.err;
+    const nlohmann::json muscovite = nlohmann::json::parse(muscovite_run.out);
+    EXPECT_NEAR(muscovite["two_v_deg"].get<double>(), 40.0, 1.0);
+    EXPECT_EQ(muscovite["sign"], "-");
+
+    const Run at_500 = petroscope("minerals show quartz --wavelength 0.5um --json");
+    ASSERT_EQ(at_500.exit_code, 0) << at_500.err;
+    EXPECT_EQ(nlohmann::json::parse(at_500.out)["wavelength_nm"].get<double>(), 500.0);
+}
+
+TEST_F(Cli, MineralsShowUnknownNameSuggests) {
+    const Run run = petroscope("minerals show quarz");
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_NE(run.err.find("quartz"), std::string::npos) << run.err;
+}
+
+TEST_F(Cli, ConoscopeRejectsBadInputAndLeavesNoFiles) {
+    const std::string png = " -o " + quoted(out() / "figure.png");
+    const std::string quick = " --size 64 --wavelength 589nm";
+    expect_rejected("conoscope --mineral quarz" + quick + png, {"quarz", "quartz"});
+    expect_rejected("conoscope --thickness 0um" + quick + png, {"--thickness", "0um"});
+    expect_rejected("conoscope --thickness -5um" + quick + png, {"-5um"});
+    expect_rejected("conoscope --thickness=-5um" + quick + png, {"-5um"});
+    expect_rejected("conoscope --thickness 30" + quick + png, {"'30'", "unit"});
+    expect_rejected("conoscope --na 0" + quick + png, {"numerical aperture"});
+    expect_rejected("conoscope --na 1.2" + quick + png, {"numerical aperture"});
+    expect_rejected("conoscope --size 32 --wavelength 589nm" + png, {"size", "32"});
+    expect_rejected("conoscope --size 5000 --wavelength 589nm" + png, {"size", "5000"});
+    expect_rejected("conoscope" + quick + " -o " + quoted(out() / "figure.jpg"), {"'.jpg'"});
+    expect_rejected("conoscope --mineral calcite --cut acute-bisectrix" + quick + png, {"acute-bisectrix", "biaxial"});
+    // Failures found only after the output files were reserved: the temporaries must be removed.
+    expect_rejected("conoscope --cut sideways" + quick + png, {"sideways"});
+    expect_rejected("conoscope --size 64 --illuminant D50" + png, {"D50"});
+    expect_rejected("conoscope --wavelength green --size 64" + png, {"green"});
+}
+
+TEST_F(Cli, ConoscopeRejectsAMalformedMineralFile) {
+    const fs::path minerals = scratch() / "minerals";
+    fs::create_directories(minerals);
+    std::ofstream(minerals / "broken.txt") << "name: broken\nsystem cubic\nclass: isotropic\n";
+    expect_rejected("--minerals-dir " + quoted(minerals) + " conoscope --size 64 --wavelength 589nm -o " +
+                        quoted(out() / "figure.png"),
+                    {"broken.txt:2:"});
+}
+
+TEST_F(Cli, ConoscopeRejectsUnwritableOutputs) {
+    const fs::path missing = scratch() / "no-such-folder";
+    expect_rejected("conoscope --size 64 --wavelength 589nm -o " + quoted(missing / "figure.png"), {"does not exist"});
+    EXPECT_FALSE(fs::exists(missing));
+    // An output name that is a folder.
+    fs::create_directories(out() / "taken.png");
+    expect_rejected("conoscope --size 64 --wavelength 589nm -o " + quoted(out() / "taken.png"), {"folder"});
+    EXPECT_TRUE(fs::is_directory(out() / "taken.png"));
+}
+
+TEST_F(Cli, ConoscopeWritesPngAndSidecar) {
+    const fs::path png = out() / "calcite.png";
+    const Run run = petroscope("conoscope --mineral calcite --size 64 --wavelength 589nm -o " + quoted(png));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_EQ(listing(out()), (std::set<std::string>{"calcite.png", "calcite.png.json"}));
+
+    const nlohmann::json sidecar = nlohmann::json::parse(read_text(out() / "calcite.png.json"));
+    EXPECT_EQ(sidecar["thickness_um"].get<double>(), 30.0);
+    EXPECT_EQ(sidecar["mineral"]["name"], "calcite");
+    EXPECT_EQ(sidecar["size_px"].get<int>(), 64);
+    EXPECT_EQ(sidecar["light"]["mode"], "monochromatic");
+    EXPECT_EQ(sidecar["light"]["wavelength_nm"].get<double>(), 589.0);
+    EXPECT_EQ(sidecar["orientation"]["cut"], "optic-axis");  // the default for a uniaxial mineral
+
+    const Image image = read_image(png);
+    EXPECT_EQ(image.width, 64);
+    EXPECT_EQ(image.height, 64);
+    ASSERT_EQ(image.channels, 3);
+    bool grey = true, in_range = true, any_light = false;
+    for (int y = 0; y < image.height; ++y) {
+        for (int x = 0; x < image.width; ++x) {
+            const float r = image.at(x, y, 0);
+            grey = grey && r == image.at(x, y, 1) && r == image.at(x, y, 2);  // monochromatic: equal channels
+            in_range = in_range && r >= 0.0f && r <= 1.0f;
+            any_light = any_light || r > 0.1f;
+        }
+    }
+    EXPECT_TRUE(grey);
+    EXPECT_TRUE(in_range);
+    EXPECT_TRUE(any_light);
+    EXPECT_EQ(image.at(0, 0, 0), 0.0f);  // outside the aperture circle
+}
+
+TEST_F(Cli, ConoscopeWritesFloatExr) {
+    const fs::path exr = out() / "figure.exr";
+    const Run run = petroscope("conoscope --size 64 -o " + quoted(exr));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_EQ(listing(out()), (std::set<std::string>{"figure.exr", "figure.exr.json"}));
+    const Image image = read_image(exr);
+    EXPECT_EQ(image.width, 64);
+    EXPECT_EQ(image.height, 64);
+    ASSERT_EQ(image.channels, 3);
+    float lowest = 1.0f, highest = 0.0f;
+    for (const float value : image.pixels) {
+        lowest = std::min(lowest, value);
+        highest = std::max(highest, value);
+    }
+    EXPECT_GE(lowest, 0.0f);
+    EXPECT_LE(highest, 1.0f);
+    EXPECT_GT(highest, 0.1f);  // not a black image
+    EXPECT_EQ(image.at(0, 0, 0), 0.0f);
+    const nlohmann::json sidecar = nlohmann::json::parse(read_text(out() / "figure.exr.json"));
+    EXPECT_EQ(sidecar["light"]["mode"], "white");
+    EXPECT_EQ(sidecar["mineral"]["name"], "muscovite");
+}
+
+}  // namespace
+}  // namespace petroscope

@@ -1,0 +1,102 @@
+// Text helpers shared by the parsers (include/petroscope/core/text.hpp) and located errors (error.hpp).
+#include "petroscope/core/text.hpp"
+
+#include "petroscope/core/error.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+namespace petroscope {
+namespace {
+
+using Words = std::vector<std::string>;
+
+TEST(Trim, RemovesSpacesTabsAndLineEndsAtBothEnds) {
+    EXPECT_EQ(trim("  \t a b \r\n"), "a b");
+    EXPECT_EQ(trim("abc"), "abc");
+    EXPECT_EQ(trim(""), "");
+    EXPECT_EQ(trim(" \t\r\n "), "");
+    EXPECT_EQ(trim("a \t b"), "a \t b");  // inner whitespace stays
+}
+
+TEST(ToLower, LowersAsciiOnly) {
+    EXPECT_EQ(to_lower("KGd(WO4)2"), "kgd(wo4)2");
+    EXPECT_EQ(to_lower("Iceland Spar"), "iceland spar");
+    EXPECT_EQ(to_lower(""), "");
+}
+
+TEST(Split, SplitsOnTheSeparatorAndTrimsEachPart) {
+    EXPECT_EQ(split("a, b ,c", ','), (Words{"a", "b", "c"}));
+    EXPECT_EQ(split("380:780:5", ':'), (Words{"380", "780", "5"}));
+    EXPECT_EQ(split("KGW, KGdW", ','), (Words{"KGW", "KGdW"}));
+}
+
+TEST(Split, KeepsEmptyPartsSoCallersCanRejectThem) {
+    EXPECT_EQ(split("", ','), (Words{""}));
+    EXPECT_EQ(split("a,,b", ','), (Words{"a", "", "b"}));
+    EXPECT_EQ(split("a,", ','), (Words{"a", ""}));
+    EXPECT_EQ(split(",a", ','), (Words{"", "a"}));
+    EXPECT_EQ(split("no separator", ','), (Words{"no separator"}));
+}
+
+TEST(SplitWhitespace, SplitsOnRunsOfSpacesAndTabs) {
+    EXPECT_EQ(split_whitespace(" cauchy\t1.53   0.0042 "), (Words{"cauchy", "1.53", "0.0042"}));
+    EXPECT_EQ(split_whitespace(""), Words{});
+    EXPECT_EQ(split_whitespace(" \t  "), Words{});
+    EXPECT_EQ(split_whitespace("one"), (Words{"one"}));
+}
+
+TEST(ParseDouble, WholeTextAsAFiniteNumber) {
+    EXPECT_EQ(parse_double("1.5"), 1.5);
+    EXPECT_EQ(parse_double(" 2 "), 2.0);
+    EXPECT_EQ(parse_double("+3"), 3.0);
+    EXPECT_EQ(parse_double("-4.25"), -4.25);
+    EXPECT_EQ(parse_double("1e3"), 1000.0);
+    EXPECT_EQ(parse_double("1.00585997e-2"), 1.00585997e-2);
+    EXPECT_EQ(parse_double(".5"), 0.5);
+    EXPECT_EQ(parse_double("0"), 0.0);
+}
+
+TEST(ParseDouble, NoPartialParses) {
+    for (const std::string bad : {"", "  ", "1.5x", "1.5 2", "x1.5", "1,5", "5e", "+-3", "++3", "-+3", "0x10", ".",
+                                  "e5", "1.5.2", "1.5um"}) {
+        SCOPED_TRACE("text: '" + bad + "'");
+        EXPECT_FALSE(parse_double(bad).has_value());
+    }
+}
+
+TEST(ParseDouble, NoNanNoInfinityNoOverflow) {
+    for (const std::string bad : {"nan", "NaN", "-nan", "nan(1)", "inf", "-inf", "+inf", "infinity", "INF", "1e400",
+                                  "-1e400"}) {
+        SCOPED_TRACE("text: '" + bad + "'");
+        EXPECT_FALSE(parse_double(bad).has_value());
+    }
+}
+
+TEST(EditDistance, LevenshteinDistances) {
+    EXPECT_EQ(edit_distance("kitten", "sitting"), 3u);  // the textbook example: 2 substitutions + 1 insertion
+    EXPECT_EQ(edit_distance("flaw", "lawn"), 2u);
+    EXPECT_EQ(edit_distance("quarz", "quartz"), 1u);
+    EXPECT_EQ(edit_distance("", "abc"), 3u);
+    EXPECT_EQ(edit_distance("abc", ""), 3u);
+    EXPECT_EQ(edit_distance("", ""), 0u);
+    EXPECT_EQ(edit_distance("calcite", "calcite"), 0u);
+    EXPECT_EQ(edit_distance("ab", "ba"), 2u);  // plain Levenshtein: no transpositions
+}
+
+TEST(EditDistance, IsSymmetric) {
+    const std::vector<std::string> words{"quartz", "quarz", "calcite", "kalzit", "", "muscovite", "biotite"};
+    for (const auto& a : words) {
+        for (const auto& b : words) EXPECT_EQ(edit_distance(a, b), edit_distance(b, a)) << a << " / " << b;
+    }
+}
+
+TEST(LocatedError, ReadsFileColonLineColonWhat) {
+    const InputError error = located_error("minerals/quartz.txt", 12, "expected 'key: value'");
+    EXPECT_STREQ(error.what(), "minerals/quartz.txt:12: expected 'key: value'");
+}
+
+}  // namespace
+}  // namespace petroscope
