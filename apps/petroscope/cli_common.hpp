@@ -1,5 +1,6 @@
 #pragma once
 // Pieces every petroscope subcommand uses: error reporting, progress, and all-or-nothing output.
+#include "petroscope/core/error.hpp"
 #include "petroscope/core/image.hpp"
 #include "petroscope/io/atomic_file.hpp"
 #include "petroscope/io/image_writer.hpp"
@@ -30,6 +31,16 @@ private:
     PendingOutputs pending_;
     std::filesystem::path image_temporary_, sidecar_temporary_;
 };
+
+/// Runs a value parser, prefixing any InputError with the option it came from ("--thickness: …").
+template <typename Parse>
+auto with_option(const std::string& option, Parse parse) {
+    try {
+        return parse();
+    } catch (const InputError& error) {
+        throw InputError(option + ": " + error.what());
+    }
+}
 
 /// The command line as one string, for sidecars.
 std::string joined_command_line(int argc, char** argv);

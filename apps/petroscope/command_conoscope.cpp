@@ -57,7 +57,7 @@ Eigen::Vector3d parse_euler(const std::string& text) {
 void run_conoscope(const ConoscopeOptions& options, const std::string& minerals_dir, const std::string& command_line) {
     const auto started = std::chrono::steady_clock::now();
     ConoscopeSettings settings;
-    settings.thickness_um = parse_length_um(options.thickness);
+    settings.thickness_um = with_option("--thickness", [&] { return parse_length_um(options.thickness); });
     if (!(settings.thickness_um > 0.0)) throw InputError("--thickness '" + options.thickness + "': the thickness must be > 0");
     settings.numerical_aperture = options.na;
     settings.size_px = options.size_px;
@@ -71,10 +71,10 @@ void run_conoscope(const ConoscopeOptions& options, const std::string& minerals_
     const bool monochromatic = !options.wavelength.empty();
     std::optional<WavelengthGrid> grid;
     if (monochromatic) {
-        settings.wavelengths_nm = {parse_wavelength_nm(options.wavelength)};
+        settings.wavelengths_nm = {with_option("--wavelength", [&] { return parse_wavelength_nm(options.wavelength); })};
         if (!(settings.wavelengths_nm[0] > 0.0)) throw InputError("--wavelength '" + options.wavelength + "': must be > 0");
     } else {
-        grid = WavelengthGrid::parse(options.wavelength_grid);
+        grid = with_option("--wavelengths", [&] { return WavelengthGrid::parse(options.wavelength_grid); });
         settings.wavelengths_nm = grid->wavelengths_nm();
     }
     settings.validate();

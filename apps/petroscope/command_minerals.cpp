@@ -98,7 +98,7 @@ void add_minerals_command(CLI::App& app, std::string& minerals_dir) {
     show->add_option("--wavelength", options->wavelength, "Wavelength, e.g. 589nm or 0.55um (default 589.3nm)");
     show->add_flag("--json", options->json, "Print JSON (keys n_alpha, n_beta, n_gamma, two_v_deg, sign, birefringence, …)");
     show->callback([options, &minerals_dir] {
-        const double wavelength_nm = parse_wavelength_nm(options->wavelength);
+        const double wavelength_nm = with_option("--wavelength", [&] { return parse_wavelength_nm(options->wavelength); });
         if (!(wavelength_nm > 0.0)) throw InputError("--wavelength must be positive, got '" + options->wavelength + "'");
         const MineralCatalog catalog = load_mineral_catalog(minerals_directory(minerals_dir));
         const Mineral& mineral = catalog.find(options->name);

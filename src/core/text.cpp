@@ -52,15 +52,34 @@ std::vector<std::string> split_whitespace(std::string_view text) {
     return words;
 }
 
+void for_each_line(std::string_view text, const std::function<void(int, std::string_view)>& visit) {
+    int line_number = 0;
+    std::size_t position = 0;
+    while (position < text.size()) {
+        const std::size_t end = std::min(text.find('\n', position), text.size());
+        visit(++line_number, text.substr(position, end - position));
+        position = end + 1;
+    }
+}
+
 std::optional<double> parse_double(std::string_view text) {
     text = trim(text);
-    if (!text.empty() && text.front() == '+') text.remove_prefix(1);
+    if (!text.empty() && text.front() == '+') {
+        text.remove_prefix(1);
+        if (!text.empty() && (text.front() == '-' || text.front() == '+')) return std::nullopt;  // "+-3"
+    }
     double value = 0.0;
     const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
     if (text.empty() || error != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
         return std::nullopt;
     }
     return value;
+}
+
+std::string format_number(double value) {
+    char buffer[32];
+    const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+    return std::string(buffer, result.ptr);
 }
 
 std::size_t edit_distance(std::string_view a, std::string_view b) {

@@ -4,6 +4,7 @@
 #include "petroscope/core/text.hpp"
 
 #include <array>
+#include <cmath>
 #include <span>
 #include <string>
 #include <utility>
@@ -23,12 +24,13 @@ double parse_with_units(std::string_view text, std::span<const UnitFactor> units
     for (const UnitFactor& unit : units) {
         if (value.size() > unit.suffix.size() && value.ends_with(unit.suffix)) {
             if (const auto number = parse_double(value.substr(0, value.size() - unit.suffix.size()))) {
-                return *number * unit.factor;
+                if (std::isfinite(*number * unit.factor)) return *number * unit.factor;
+                break;  // overflows once converted
             }
         }
     }
     if (bare_allowed) {
-        if (const auto number = parse_double(value)) return *number * bare_factor;
+        if (const auto number = parse_double(value); number && std::isfinite(*number * bare_factor)) return *number * bare_factor;
     }
     throw InputError("invalid " + std::string(quantity) + " '" + std::string(text) +
                      "': expected a number with a unit (" + std::string(accepted) + "), e.g. 30um");

@@ -1,5 +1,8 @@
 #include "petroscope/minerals/mineral.hpp"
 
+#include "petroscope/core/error.hpp"
+#include "petroscope/core/text.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -68,6 +71,16 @@ std::vector<std::string> Mineral::range_warnings(const std::vector<double>& wave
 OpticalSummary optical_summary(const Mineral& mineral, double wavelength_nm) {
     OpticalSummary summary;
     summary.wavelength_nm = wavelength_nm;
+    for (const PrincipalAxis& axis : mineral.axes) {
+        const double value = axis.n(wavelength_nm);
+        if (!std::isfinite(value) || value < 1.0) {
+            std::string range;
+            if (axis.range_um) range = " (its formula is valid over " + format_number((*axis.range_um)[0] * 1e3) + "-" +
+                                       format_number((*axis.range_um)[1] * 1e3) + " nm)";
+            throw InputError(mineral.name + ": " + axis.key + " has no physical value at " + format_number(wavelength_nm) +
+                             " nm" + range);
+        }
+    }
     Eigen::Vector3d n = mineral.principal_n(wavelength_nm);
     std::sort(n.data(), n.data() + 3);
     summary.n_alpha = n[0];

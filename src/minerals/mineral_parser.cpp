@@ -43,15 +43,10 @@ std::string_view strip_comment(std::string_view line) {
 class RecordReader {
 public:
     RecordReader(std::string_view text, std::string file_name) : file_(std::move(file_name)) {
-        int line_number = 0;
-        std::size_t position = 0;
-        while (position <= text.size()) {
-            const std::size_t end = std::min(text.find('\n', position), text.size());
-            ++line_number;
-            const std::string_view line = trim(strip_comment(text.substr(position, end - position)));
-            position = end + 1;
+        for_each_line(text, [&](int line_number, std::string_view raw) {
             last_line_ = line_number;
-            if (line.empty()) continue;
+            const std::string_view line = trim(strip_comment(raw));
+            if (line.empty()) return;
             const std::size_t colon = line.find(':');
             if (colon == std::string_view::npos) {
                 throw located_error(file_, line_number, "expected 'key: value', found '" + std::string(line) + "'");
@@ -65,7 +60,7 @@ public:
                                     "key '" + key + "' appears twice (first on line " + std::to_string(previous->second.line) + ")");
             }
             entries_[key] = Entry{value, line_number};
-        }
+        });
     }
 
     const Entry* find(const std::string& key) {
@@ -95,7 +90,7 @@ private:
     std::string file_;
     std::map<std::string, Entry> entries_;
     std::set<std::string> used_;
-    int last_line_ = 0;
+    int last_line_ = 1;  // the last line of the file (1 for an empty file)
 };
 
 DispersionModel parse_model(RecordReader& reader, const Entry& entry, const std::string& key) {

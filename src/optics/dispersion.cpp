@@ -5,7 +5,6 @@
 
 #include <array>
 #include <cmath>
-#include <charconv>
 
 namespace petroscope {
 namespace {
@@ -156,10 +155,8 @@ std::string DispersionModel::describe() const {
     // Shortest text that reads back to the same double.
     std::string text(dispersion_kind_name(kind_));
     for (std::size_t i = 0; i < coefficients_.size(); ++i) {
-        char buffer[32];
-        const auto result = std::to_chars(buffer, buffer + sizeof buffer, coefficients_[i]);
         text += (kind_ == Kind::table_nm && i % 2 == 1) ? ':' : ' ';
-        text.append(buffer, result.ptr);
+        text += format_number(coefficients_[i]);
     }
     return text;
 }

@@ -62,33 +62,30 @@ double solve_bracketed(const SheetEquation& equation, double end_a, double end_b
 }
 
 // Uniaxial crystal (b₂ = ±b₁ = ±b): |N × b₁||N × b₂| = |N|² − (N·b)², so g_σ is the quadratic
-// αq² + βq + γ; returns its (larger, smaller) roots, or NaN when they are complex (evanescent).
-Eigen::Vector2d quadratic_roots(const SheetEquation& e, double orientation_sign) {
+// αq² + βq + γ; its larger root is the forward mode (the caller has checked that g(0) < 0, so the roots
+// are real and of opposite signs).
+double forward_quadratic_root(const SheetEquation& e, double orientation_sign) {
     const double level = e.a_half_sum + e.sigma * e.b_half_difference;
     const double cross = e.b_half_difference * (orientation_sign - e.sigma);
     const double alpha = level + cross * e.b1z * e.b1z;
     const double beta = 2.0 * cross * e.u1 * e.b1z;
     const double gamma = level * e.xi2 + cross * e.u1 * e.u1 - 1.0;
-    const double discriminant = beta * beta - 4.0 * alpha * gamma;
-    if (discriminant < 0.0) return Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
+    const double discriminant = std::max(beta * beta - 4.0 * alpha * gamma, 0.0);
     // Numerically stable form (Press et al., Numerical Recipes, §5.6).
     const double t = -0.5 * (beta + std::copysign(std::sqrt(discriminant), beta));
     const double r1 = t / alpha;
     const double r2 = t != 0.0 ? gamma / t : -r1;
-    return {std::max(r1, r2), std::min(r1, r2)};
+    return std::max(r1, r2);
 }
 
-SlabMode make_mode(const BinormalFrame& frame, const TangentialWavevector& direction, double q, int sheet) {
-    const Eigen::Vector3d n_vector(direction.xi.x(), direction.xi.y(), q);
+SlabMode make_mode(const BinormalFrame& frame, const Eigen::Vector2d& xi, double q, int sheet) {
+    const Eigen::Vector3d n_vector(xi.x(), xi.y(), q);
     const Eigen::Vector3d k_hat = n_vector.normalized();
     const auto [d_fast, d_slow] = vibration_directions(frame, k_hat);
-    const Eigen::Vector3d e_field = frame.impermeability * (sheet == 0 ? d_fast : d_slow);
-    const Eigen::Vector3d h_field = n_vector.cross(e_field);  // H = N × E (units of √(ε₀/μ₀))
-    const Eigen::Vector3d radial(direction.radial.x(), direction.radial.y(), 0.0);
-    const Eigen::Vector3d azimuthal(direction.azimuthal.x(), direction.azimuthal.y(), 0.0);
     SlabMode mode;
     mode.q = q;
-    mode.psi = {e_field.dot(radial), h_field.dot(azimuthal), e_field.dot(azimuthal), -h_field.dot(radial)};
+    mode.e_field = frame.impermeability * (sheet == 0 ? d_fast : d_slow);
+    mode.h_field = n_vector.cross(mode.e_field);  // H = N × E (units of √(ε₀/μ₀))
     return mode;
 }
 
@@ -99,11 +96,11 @@ Eigen::Vector2d isotropic_amplitudes(const Eigen::Vector4d& psi, double n, doubl
     return {0.5 * (psi[2] + sign * psi[3] / big_q), 0.5 * (psi[0] * n / big_q + sign * psi[1] / n)};
 }
 
-Eigen::Matrix2d isotropic_amplitudes(const SlabMode& first, const SlabMode& second, double n, double big_q,
-                                     double sign) {
+Eigen::Matrix2d isotropic_amplitudes(const SlabMode& first, const SlabMode& second, const TangentialWavevector& direction,
+                                     double n, double big_q, double sign) {
     Eigen::Matrix2d amplitudes;
-    amplitudes.col(0) = isotropic_amplitudes(first.psi, n, big_q, sign);
-    amplitudes.col(1) = isotropic_amplitudes(second.psi, n, big_q, sign);
+    amplitudes.col(0) = isotropic_amplitudes(tangential_field(first, direction), n, big_q, sign);
+    amplitudes.col(1) = isotropic_amplitudes(tangential_field(second, direction), n, big_q, sign);
     return amplitudes;
 }
 
@@ -118,39 +115,47 @@ TangentialWavevector TangentialWavevector::from_xi(const Eigen::Vector2d& xi) {
     return direction;
 }
 
+Eigen::Vector4d tangential_field(const SlabMode& mode, const TangentialWavevector& direction) {
+    const Eigen::Vector2d& radial = direction.radial;
+    const Eigen::Vector2d& azimuthal = direction.azimuthal;
+    return {mode.e_field.head<2>().dot(radial), mode.h_field.head<2>().dot(azimuthal),
+            mode.e_field.head<2>().dot(azimuthal), -mode.h_field.head<2>().dot(radial)};
+}
+
+SlabMode time_reversed(const SlabMode& mode) {
+    return SlabMode{-mode.q, mode.e_field, -mode.h_field};
+}
+
+bool solve_forward_modes(const BinormalFrame& frame, const Eigen::Vector2d& xi, const Eigen::Vector2d& guess,
+                         std::array<SlabMode, 2>& modes) {
+    const double n_max = 1.0 / std::sqrt(frame.c);
+    for (int sheet = 0; sheet < 2; ++sheet) {
+        const SheetEquation equation{0.5 * (frame.a + frame.c),
+                                     0.5 * (frame.a - frame.c),
+                                     sheet == 0 ? 1.0 : -1.0,
+                                     xi.squaredNorm(),
+                                     xi.dot(frame.binormal_1.head<2>()),
+                                     xi.dot(frame.binormal_2.head<2>()),
+                                     frame.binormal_1.z(),
+                                     frame.binormal_2.z()};
+        double derivative = 0.0;
+        // |ξ| reaches the sheet's index: no propagating mode on this sheet.
+        if (equation.value(0.0, &derivative) >= 0.0) return false;
+        const double q = frame.uniaxial()
+                             ? forward_quadratic_root(equation, frame.binormal_1.dot(frame.binormal_2))
+                             : solve_bracketed(equation, 0.0, 2.0 * n_max, guess[sheet]);  // g(2 n_max) > 0
+        modes[sheet] = make_mode(frame, xi, q, sheet);
+    }
+    return true;
+}
+
 SlabModes solve_slab_modes(const BinormalFrame& frame, const TangentialWavevector& direction,
                            const Eigen::Vector2d& forward_guess) {
     SlabModes modes;
-    const double n_max = 1.0 / std::sqrt(frame.c);
-    for (int sheet = 0; sheet < 2; ++sheet) {
-        SheetEquation equation{0.5 * (frame.a + frame.c),
-                               0.5 * (frame.a - frame.c),
-                               sheet == 0 ? 1.0 : -1.0,
-                               direction.xi.squaredNorm(),
-                               direction.xi.dot(frame.binormal_1.head<2>()),
-                               direction.xi.dot(frame.binormal_2.head<2>()),
-                               frame.binormal_1.z(),
-                               frame.binormal_2.z()};
-        double forward_q = 0.0;
-        double backward_q = 0.0;
-        double derivative = 0.0;
-        if (equation.value(0.0, &derivative) >= 0.0) {
-            // |ξ| reaches the sheet's index: no propagating mode on this sheet.
-            modes.propagating = false;
-            continue;
-        }
-        if (frame.uniaxial()) {
-            const Eigen::Vector2d roots = quadratic_roots(equation, frame.binormal_1.dot(frame.binormal_2));
-            forward_q = roots[0];
-            backward_q = roots[1];
-        } else {
-            const double limit = 2.0 * n_max;  // g(±2 n_max) > 0: the roots lie inside
-            forward_q = solve_bracketed(equation, 0.0, limit, forward_guess[sheet]);
-            backward_q = solve_bracketed(equation, 0.0, -limit, std::numeric_limits<double>::quiet_NaN());
-        }
-        modes.forward[sheet] = make_mode(frame, direction, forward_q, sheet);
-        modes.backward[sheet] = make_mode(frame, direction, backward_q, sheet);
-    }
+    std::array<SlabMode, 2> reverse;
+    modes.propagating = solve_forward_modes(frame, direction.xi, forward_guess, modes.forward) &&
+                        solve_forward_modes(frame, -direction.xi, Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN()), reverse);
+    for (int sheet = 0; sheet < 2; ++sheet) modes.backward[sheet] = time_reversed(reverse[sheet]);
     return modes;
 }
 
@@ -165,14 +170,14 @@ SlabTransfer slab_transfer(const SlabModes& modes, const TangentialWavevector& d
     transfer.q = {modes.forward[0].q, modes.forward[1].q};
     // Entrance face: incident + reflected = Σ tₘ ψₘ⁺; the forward projection removes the reflected
     // waves, so (incident s, p) = F·t with F = forward amplitudes of the crystal modes.
-    const Eigen::Matrix2d f = isotropic_amplitudes(modes.forward[0], modes.forward[1], n_entrance, q_entrance, 1.0);
+    const Eigen::Matrix2d f = isotropic_amplitudes(modes.forward[0], modes.forward[1], direction, n_entrance, q_entrance, 1.0);
     transfer.entry = f.inverse();
     // Exit face: Σ uₘψₘ⁺ + Σ rⱼψⱼ⁻ = transmitted forward waves only. Their backward projection vanishes:
     // r = −(A⁻Ψ⁻)⁻¹(A⁻Ψ⁺)u, and the transmitted amplitudes are A⁺(Ψ⁺u + Ψ⁻r).
-    const Eigen::Matrix2d forward_plus = isotropic_amplitudes(modes.forward[0], modes.forward[1], n_exit, q_exit, 1.0);
-    const Eigen::Matrix2d forward_minus = isotropic_amplitudes(modes.forward[0], modes.forward[1], n_exit, q_exit, -1.0);
-    const Eigen::Matrix2d backward_plus = isotropic_amplitudes(modes.backward[0], modes.backward[1], n_exit, q_exit, 1.0);
-    const Eigen::Matrix2d backward_minus = isotropic_amplitudes(modes.backward[0], modes.backward[1], n_exit, q_exit, -1.0);
+    const Eigen::Matrix2d forward_plus = isotropic_amplitudes(modes.forward[0], modes.forward[1], direction, n_exit, q_exit, 1.0);
+    const Eigen::Matrix2d forward_minus = isotropic_amplitudes(modes.forward[0], modes.forward[1], direction, n_exit, q_exit, -1.0);
+    const Eigen::Matrix2d backward_plus = isotropic_amplitudes(modes.backward[0], modes.backward[1], direction, n_exit, q_exit, 1.0);
+    const Eigen::Matrix2d backward_minus = isotropic_amplitudes(modes.backward[0], modes.backward[1], direction, n_exit, q_exit, -1.0);
     transfer.exit = forward_plus - backward_plus * backward_minus.inverse() * forward_minus;
     return transfer;
 }

@@ -28,20 +28,17 @@ SpectralTable parse_spectral_csv(std::string_view text, const std::string& sourc
     SpectralTable table;
     std::vector<double> wavelengths;
     std::vector<std::vector<double>> values;
-    int line_number = 0;
-    std::size_t position = 0;
-    while (position <= text.size()) {
-        const std::size_t end = std::min(text.find('\n', position), text.size());
-        const std::string_view line = trim(text.substr(position, end - position));
-        position = end + 1;
-        ++line_number;
-        if (line.empty()) continue;
+    int last_line = 1;
+    for_each_line(text, [&](int line_number, std::string_view raw) {
+        last_line = line_number;
+        const std::string_view line = trim(raw);
+        if (line.empty()) return;
         const auto fields = split(line, ',');
         if (table.column_names.empty() && wavelengths.empty()) {
             if (fields.size() < 2) throw located_error(source_name, line_number, "expected a header with a wavelength column and at least one more column");
             table.column_names.assign(fields.begin() + 1, fields.end());
             values.resize(table.column_names.size());
-            continue;
+            return;
         }
         if (fields.size() != table.column_names.size() + 1) {
             throw located_error(source_name, line_number,
@@ -59,8 +56,8 @@ SpectralTable parse_spectral_csv(std::string_view text, const std::string& sourc
             if (!value) throw located_error(source_name, line_number, "value '" + fields[c + 1] + "' is not a number");
             values[c].push_back(*value);
         }
-    }
-    if (wavelengths.size() < 2) throw located_error(source_name, line_number, "expected at least two rows of data");
+    });
+    if (wavelengths.size() < 2) throw located_error(source_name, last_line, "expected at least two rows of data");
     for (auto& column : values) table.columns.emplace_back(wavelengths, std::move(column));
     return table;
 }

@@ -3,14 +3,26 @@
 #include "petroscope/core/error.hpp"
 #include "petroscope/core/text.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
 namespace petroscope {
 
+namespace {
+
+// The number of samples as a double (it may not fit an int before it is checked). The tolerance keeps
+// END itself when (END − START)/STEP is an integer up to rounding.
+double sample_count(double start_nm, double end_nm, double step_nm) {
+    return std::floor((end_nm - start_nm) / step_nm + 1e-9) + 1.0;
+}
+
+constexpr double kMaxSamples = 100000;
+
+}  // namespace
+
 int WavelengthGrid::size() const {
-    // The tolerance keeps END itself when (END − START)/STEP is an integer up to rounding.
-    return static_cast<int>(std::floor((end_nm - start_nm) / step_nm + 1e-9)) + 1;
+    return static_cast<int>(std::min(sample_count(start_nm, end_nm, step_nm), kMaxSamples));
 }
 
 std::vector<double> WavelengthGrid::wavelengths_nm() const {
@@ -36,9 +48,8 @@ WavelengthGrid WavelengthGrid::parse(std::string_view text) {
     if (!start || !end || !step) throw fail("not a number");
     if (*start <= 0.0 || *end < *start) throw fail("need 0 < START <= END");
     if (*step <= 0.0) throw fail("STEP must be > 0");
-    WavelengthGrid grid{*start, *end, *step};
-    if (grid.size() > 100000) throw fail("more than 100000 wavelengths");
-    return grid;
+    if (!(sample_count(*start, *end, *step) <= kMaxSamples)) throw fail("more than 100000 wavelengths");
+    return WavelengthGrid{*start, *end, *step};
 }
 
 }  // namespace petroscope

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdlib>
 #include <filesystem>
@@ -40,7 +41,7 @@ std::set<std::string> listing(const fs::path& folder) {
     return names;
 }
 
-struct Run {
+struct CommandResult {
     int exit_code = -1;
     std::string out, err;
 };
@@ -67,13 +68,13 @@ protected:
     const fs::path& scratch() const { return scratch_; }
 
     // Runs `petroscope ARGUMENTS` with the environment overrides removed (so the shipped data is used).
-    Run petroscope(const std::string& arguments) {
+    CommandResult petroscope(const std::string& arguments) {
         const fs::path out_log = scratch_ / "logs" / "stdout.txt";
         const fs::path err_log = scratch_ / "logs" / "stderr.txt";
         const std::string command = "env -u PETROSCOPE_MINERALS -u PETROSCOPE_DATA_DIR " + quoted(PETROSCOPE_BINARY) +
                                     " " + arguments + " > " + quoted(out_log) + " 2> " + quoted(err_log) + " < /dev/null";
         const int status = std::system(command.c_str());
-        Run run;
+        CommandResult run;
         run.exit_code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
         run.out = read_text(out_log);
         run.err = read_text(err_log);
@@ -85,7 +86,7 @@ protected:
     void expect_rejected(const std::string& arguments, const std::vector<std::string>& expected) {
         SCOPED_TRACE("petroscope " + arguments);
         const std::set<std::string> before = listing(out());
-        const Run run = petroscope(arguments);
+        const CommandResult run = petroscope(arguments);
         EXPECT_NE(run.exit_code, 0);
         EXPECT_NE(run.exit_code, -1) << "did not exit normally";
         for (const std::string& text : expected) {
@@ -104,7 +105,7 @@ const std::set<std::string> kMineralNames{
     "kyanite", "sillimanite", "sapphire", "rutile", "KTP", "LBO", "KGd(WO4)2", "BBO", "LiNbO3", "YVO4"};
 
 TEST_F(Cli, MineralsListsAll28) {
-    const Run run = petroscope("minerals");
+    const CommandResult run = petroscope("minerals");
     ASSERT_EQ(run.exit_code, 0) << run.err;
     std::istringstream lines(run.out);
     std::string line;
@@ -122,7 +123,7 @@ TEST_F(Cli, MineralsListsAll28) {
 }
 
 TEST_F(Cli, MineralsShowJson) {
-    const Run run = petroscope("minerals show quartz --json");
+    const CommandResult run = petroscope("minerals show quartz --json");
     ASSERT_EQ(run.exit_code, 0) << run.err;
     const nlohmann::json quartz = nlohmann::json::parse(run.out);  // throws (fails the test) if not JSON
     for (const char* key : {"n_alpha", "n_beta", "n_gamma", "two_v_deg", "sign", "birefringence"}) {
@@ -140,21 +141,34 @@ TEST_F(Cli, MineralsShowJson) {
     EXPECT_EQ(quartz["n_gamma"].get<double>(), summary.n_gamma);
     EXPECT_EQ(quartz["birefringence"].get<double>(), summary.birefringence);
 
-    const Run muscovite_run = petroscope("minerals show muscovite --json");
+    const CommandResult muscovite_run = petroscope("minerals show muscovite --json");
     ASSERT_EQ(muscovite_run.exit_code, 0) << muscovite_run.err;
     const nlohmann::json muscovite = nlohmann::json::parse(muscovite_run.out);
     EXPECT_NEAR(muscovite["two_v_deg"].get<double>(), 40.0, 1.0);
     EXPECT_EQ(muscovite["sign"], "-");
 
-    const Run at_500 = petroscope("minerals show quartz --wavelength 0.5um --json");
+    const CommandResult at_500 = petroscope("minerals show quartz --wavelength 0.5um --json");
     ASSERT_EQ(at_500.exit_code, 0) << at_500.err;
     EXPECT_EQ(nlohmann::json::parse(at_500.out)["wavelength_nm"].get<double>(), 500.0);
 }
 
 TEST_F(Cli, MineralsShowUnknownNameSuggests) {
-    const Run run = petroscope("minerals show quarz");
+    const CommandResult run = petroscope("minerals show quarz");
     EXPECT_NE(run.exit_code, 0);
     EXPECT_NE(run.err.find("quartz"), std::string::npos) << run.err;
+}
+
+TEST_F(Cli, MineralsShowRejectsWavelengthsWithoutFiniteIndices) {
+    // Was a bug: `minerals show` had no check that the indices are finite (the conoscope has one): at 9 um, between
+    // the poles of Ghosh's quartz formula (n^2 < 0), and at 1e306 um (the unit conversion overflows to inf, see
+    // tests/core/test_units), it exits 0 and prints n_alpha = n_beta = n_gamma = null (NaN) with sign "-" for
+    // quartz, which is optically positive. Expected: a non-zero exit with a message naming the wavelength.
+    for (const std::string wavelength : {"9um", "1e306um"}) {
+        SCOPED_TRACE(wavelength);
+        const CommandResult run = petroscope("minerals show quartz --json --wavelength " + wavelength);
+        EXPECT_NE(run.exit_code, 0) << run.out;
+        EXPECT_EQ(run.out.find("null"), std::string::npos) << run.out;
+    }
 }
 
 TEST_F(Cli, ConoscopeRejectsBadInputAndLeavesNoFiles) {
@@ -198,7 +212,7 @@ TEST_F(Cli, ConoscopeRejectsUnwritableOutputs) {
 
 TEST_F(Cli, ConoscopeWritesPngAndSidecar) {
     const fs::path png = out() / "calcite.png";
-    const Run run = petroscope("conoscope --mineral calcite --size 64 --wavelength 589nm -o " + quoted(png));
+    const CommandResult run = petroscope("conoscope --mineral calcite --size 64 --wavelength 589nm -o " + quoted(png));
     ASSERT_EQ(run.exit_code, 0) << run.err;
     EXPECT_EQ(listing(out()), (std::set<std::string>{"calcite.png", "calcite.png.json"}));
 
@@ -231,22 +245,28 @@ TEST_F(Cli, ConoscopeWritesPngAndSidecar) {
 
 TEST_F(Cli, ConoscopeWritesFloatExr) {
     const fs::path exr = out() / "figure.exr";
-    const Run run = petroscope("conoscope --size 64 -o " + quoted(exr));
+    const CommandResult run = petroscope("conoscope --size 64 -o " + quoted(exr));
     ASSERT_EQ(run.exit_code, 0) << run.err;
     EXPECT_EQ(listing(out()), (std::set<std::string>{"figure.exr", "figure.exr.json"}));
     const Image image = read_image(exr);
     EXPECT_EQ(image.width, 64);
     EXPECT_EQ(image.height, 64);
     ASSERT_EQ(image.channels, 3);
-    float lowest = 1.0f, highest = 0.0f;
-    for (const float value : image.pixels) {
-        lowest = std::min(lowest, value);
-        highest = std::max(highest, value);
+    // Luminance: Y = 0.2126 R + 0.7152 G + 0.0722 B (IEC 61966-2-1) recovers the Y of the transmitted light,
+    // which cannot exceed that of the white (T <= 1 at every wavelength between crossed polars) nor be negative.
+    // 1e-3 covers the 4-digit sRGB matrices (inverse to ~1e-4) and float storage.
+    double lowest_y = 1.0, highest_y = 0.0;
+    for (int y = 0; y < image.height; ++y) {
+        for (int x = 0; x < image.width; ++x) {
+            const double luminance = 0.2126 * image.at(x, y, 0) + 0.7152 * image.at(x, y, 1) + 0.0722 * image.at(x, y, 2);
+            lowest_y = std::min(lowest_y, luminance);
+            highest_y = std::max(highest_y, luminance);
+        }
     }
-    EXPECT_GE(lowest, 0.0f);
-    EXPECT_LE(highest, 1.0f);
-    EXPECT_GT(highest, 0.1f);  // not a black image
-    EXPECT_EQ(image.at(0, 0, 0), 0.0f);
+    EXPECT_GE(lowest_y, -1e-3);
+    EXPECT_LE(highest_y, 1.0 + 1e-3);
+    EXPECT_GT(highest_y, 0.1);  // not a black image
+    EXPECT_EQ(image.at(0, 0, 0), 0.0f);  // outside the aperture circle
     const nlohmann::json sidecar = nlohmann::json::parse(read_text(out() / "figure.exr.json"));
     EXPECT_EQ(sidecar["light"]["mode"], "white");
     EXPECT_EQ(sidecar["mineral"]["name"], "muscovite");

@@ -60,11 +60,18 @@ TEST(ParseDouble, WholeTextAsAFiniteNumber) {
 }
 
 TEST(ParseDouble, NoPartialParses) {
-    for (const std::string bad : {"", "  ", "1.5x", "1.5 2", "x1.5", "1,5", "5e", "+-3", "++3", "-+3", "0x10", ".",
+    for (const std::string bad : {"", "  ", "1.5x", "1.5 2", "x1.5", "1,5", "5e", "++3", "-+3", "0x10", ".",
                                   "e5", "1.5.2", "1.5um"}) {
         SCOPED_TRACE("text: '" + bad + "'");
         EXPECT_FALSE(parse_double(bad).has_value());
     }
+}
+
+TEST(ParseDouble, RejectsTwoSigns) {
+    // Was a bug: parse_double strips one leading '+' and hands the rest to std::from_chars, which accepts a leading
+    // '-', so "+-3" parses as -3 although it is not a number (strtod and every number syntax reject it).
+    EXPECT_FALSE(parse_double("+-3").has_value());
+    EXPECT_FALSE(parse_double("+-0.5e1").has_value());
 }
 
 TEST(ParseDouble, NoNanNoInfinityNoOverflow) {

@@ -81,6 +81,13 @@ TEST(ParseLength, ErrorNamesTheValueAndTheAcceptedUnits) {
     EXPECT_NE(bare.find("unit"), std::string::npos) << bare;
 }
 
+TEST(ParseLength, OverflowingUnitConversionIsAnError) {
+    // Was a bug: "1e305" and "m" are each valid, but 1e305 m = 1e311 um overflows to +inf, and parse_length_um
+    // returns inf instead of throwing (parse_double's "no Inf" guarantee is lost when the unit factor is applied).
+    EXPECT_THROW(parse_length_um("1e305m"), InputError);
+    EXPECT_THROW(parse_length_um("-1e305m"), InputError);
+}
+
 TEST(ParseWavelength, UnitsAndBareNanometres) {
     EXPECT_EQ(parse_wavelength_nm("589nm"), 589.0);
     EXPECT_DOUBLE_EQ(parse_wavelength_nm("0.5893um"), 589.3);
@@ -97,6 +104,12 @@ TEST(ParseWavelength, RejectsBadValuesAndLengthOnlyUnits) {
         SCOPED_TRACE("text: '" + bad + "'");
         EXPECT_THROW(parse_wavelength_nm(bad), InputError);
     }
+}
+
+TEST(ParseWavelength, OverflowingUnitConversionIsAnError) {
+    // Was a bug: 1e306 um = 1e309 nm overflows to +inf and is returned; `petroscope minerals show quartz
+    // --wavelength 1e306um` then prints "at inf nm" with NaN indices and exits 0 (see tests/cli).
+    EXPECT_THROW(parse_wavelength_nm("1e306um"), InputError);
 }
 
 TEST(ParseWavelength, ErrorNamesTheValue) {

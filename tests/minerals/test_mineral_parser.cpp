@@ -235,7 +235,7 @@ TEST(MineralParser, MissingRequiredKeysAreReportedAtTheLastLine) {
 }
 
 TEST(MineralParser, MissingKeyLineIsALineOfTheFileWhenItEndsWithANewline) {
-    // FAILS: RecordReader counts the empty text after the final '\n' as a line, so an 8-line file that ends
+    // Was a bug: RecordReader counts the empty text after the final '\n' as a line, so an 8-line file that ends
     // with a newline (as every editor writes it) reports a missing key at line 9, which does not exist.
     // Expected: the last line of the file, 8 (as for the same file without the final newline).
     const std::string message = parse_error(join(without(biaxial_lines(), 1)) + "\n");

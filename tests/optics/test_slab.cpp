@@ -65,8 +65,8 @@ TEST(SlabModes, EveryRootLiesOnItsSheetOfTheIndexSurface) {
             EXPECT_GT(modes.forward[sheet].q, 0.0);
             EXPECT_LT(modes.backward[sheet].q, 0.0);
             // Forward modes carry energy toward +z, backward ones toward −z.
-            EXPECT_GT(flux(modes.forward[sheet].psi), 0.0);
-            EXPECT_LT(flux(modes.backward[sheet].psi), 0.0);
+            EXPECT_GT(flux(tangential_field(modes.forward[sheet], c.direction)), 0.0);
+            EXPECT_LT(flux(tangential_field(modes.backward[sheet], c.direction)), 0.0);
         }
     }
     EXPECT_LT(worst, 1e-13);
@@ -100,7 +100,7 @@ TEST(SlabTransfer, MatchesDirect4x4BoundarySolveAndConservesEnergy) {
         const Eigen::Vector4d p_back = isotropic_psi(c.n_outside, xi, false, -1.0);
         // Entrance: incident + r_s ψ_s⁻ + r_p ψ_p⁻ = t_f ψ_f + t_sl ψ_sl.
         Eigen::Matrix4d entrance;
-        entrance << -s_back, -p_back, modes.forward[0].psi, modes.forward[1].psi;
+        entrance << -s_back, -p_back, tangential_field(modes.forward[0], c.direction), tangential_field(modes.forward[1], c.direction);
         for (int polarization = 0; polarization < 2; ++polarization) {
             const Eigen::Vector4d incident = polarization == 0 ? s_in : p_in;
             const Eigen::Vector4d x = entrance.fullPivLu().solve(incident);
@@ -108,18 +108,18 @@ TEST(SlabTransfer, MatchesDirect4x4BoundarySolveAndConservesEnergy) {
             worst_entry = std::max(worst_entry, std::abs(x[3] - transfer.entry(1, polarization)));
             // R + T = 1 (modes are power-orthogonal, so the transmitted flux is the sum over modes).
             const double reflected = -(x[0] * x[0] * flux(s_back) + x[1] * x[1] * flux(p_back));
-            const double transmitted = x[2] * x[2] * flux(modes.forward[0].psi) + x[3] * x[3] * flux(modes.forward[1].psi);
+            const double transmitted = x[2] * x[2] * flux(tangential_field(modes.forward[0], c.direction)) + x[3] * x[3] * flux(tangential_field(modes.forward[1], c.direction));
             worst_energy = std::max(worst_energy, std::abs(reflected + transmitted - flux(incident)) / flux(incident));
         }
         // Exit: ψ_m + r₁ψ₁⁻ + r₂ψ₂⁻ = t_s ψ_s⁺ + t_p ψ_p⁺.
         Eigen::Matrix4d exit;
-        exit << -modes.backward[0].psi, -modes.backward[1].psi, s_in, p_in;
+        exit << -tangential_field(modes.backward[0], c.direction), -tangential_field(modes.backward[1], c.direction), s_in, p_in;
         for (int mode = 0; mode < 2; ++mode) {
-            const Eigen::Vector4d x = exit.fullPivLu().solve(modes.forward[mode].psi);
+            const Eigen::Vector4d x = exit.fullPivLu().solve(tangential_field(modes.forward[mode], c.direction));
             worst_exit = std::max(worst_exit, std::abs(x[2] - transfer.exit(0, mode)));
             worst_exit = std::max(worst_exit, std::abs(x[3] - transfer.exit(1, mode)));
-            const double incident = flux(modes.forward[mode].psi);
-            const double reflected = -(x[0] * x[0] * flux(modes.backward[0].psi) + x[1] * x[1] * flux(modes.backward[1].psi));
+            const double incident = flux(tangential_field(modes.forward[mode], c.direction));
+            const double reflected = -(x[0] * x[0] * flux(tangential_field(modes.backward[0], c.direction)) + x[1] * x[1] * flux(tangential_field(modes.backward[1], c.direction)));
             const double transmitted = x[2] * x[2] * flux(s_in) + x[3] * x[3] * flux(p_in);
             worst_energy = std::max(worst_energy, std::abs(reflected + transmitted - incident) / incident);
         }

@@ -68,5 +68,16 @@ TEST(WavelengthGrid, ParseErrorsQuoteTheBadText) {
     }
 }
 
+TEST(WavelengthGrid, HugeSampleCountsAreRejected) {
+    // Was a bug: size() converts floor((END − START)/STEP) to int; for 1e300 (or 4e302) samples the conversion is
+    // out of range (undefined behaviour; on x86-64 it gives INT_MIN), so size() is negative, the "more than
+    // 100000 wavelengths" check passes, and the grid is accepted. `petroscope conoscope --wavelengths
+    // 1:1e300:1` then ends with "internal error: cannot create std::vector larger than max_size()", exit 3.
+    for (const std::string bad : {"1:1e300:1", "380:780:1e-300", "1:3e9:1"}) {
+        SCOPED_TRACE(bad);
+        EXPECT_THROW(WavelengthGrid::parse(bad), InputError);
+    }
+}
+
 }  // namespace
 }  // namespace petroscope

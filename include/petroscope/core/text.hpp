@@ -1,5 +1,6 @@
 #pragma once
 // Small text helpers shared by the parsers (mineral files, CSV tables, CLI values).
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -13,8 +14,15 @@ std::vector<std::string> split(std::string_view text, char separator);
 /// Splits on runs of spaces and tabs.
 std::vector<std::string> split_whitespace(std::string_view text);
 
+/// Calls visit(line_number, line) for each line of `text` (numbered from 1, without the newline; a final
+/// newline ends the last line rather than starting an empty one).
+void for_each_line(std::string_view text, const std::function<void(int, std::string_view)>& visit);
+
 /// The whole of `text` as a finite double, or nothing (no partial parses, no NaN/Inf).
 std::optional<double> parse_double(std::string_view text);
+
+/// The shortest text that reads back as `value` ("0.85", "1e-300").
+std::string format_number(double value);
 
 /// Levenshtein edit distance, for "did you mean" suggestions.
 std::size_t edit_distance(std::string_view a, std::string_view b);

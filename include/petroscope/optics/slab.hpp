@@ -20,24 +20,37 @@ struct TangentialWavevector {
     static TangentialWavevector from_xi(const Eigen::Vector2d& xi);
 };
 
-/// One plane-wave mode of the slab: q = k_z/k₀ and its tangential field ψ = (E_ρ, H_s, E_s, −H_ρ)
-/// (Berreman's ordering in the plane-of-incidence frame, H in units of √(ε₀/μ₀), so H = N × E).
+/// One plane-wave mode of the slab: q = k_z/k₀, E and H = N × E (H in units of √(ε₀/μ₀)), N = (ξ, q).
 struct SlabMode {
     double q = 0.0;
-    Eigen::Vector4d psi = Eigen::Vector4d::Zero();
+    Eigen::Vector3d e_field = Eigen::Vector3d::Zero();
+    Eigen::Vector3d h_field = Eigen::Vector3d::Zero();
 };
 
-/// The four modes of the crystal for one tangential wavevector: index 0 fast sheet, 1 slow sheet.
+/// The tangential field ψ = (E·ρ̂, H·ŝ, E·ŝ, −H·ρ̂) of a mode in the plane-of-incidence frame of
+/// `direction` (Berreman's ordering, physics notes §3).
+Eigen::Vector4d tangential_field(const SlabMode& mode, const TangentialWavevector& direction);
+
+/// Time reversal of a mode of a lossless medium: N → −N, E → E, H → −H. The backward modes for ξ are
+/// the time-reversed forward modes for −ξ.
+SlabMode time_reversed(const SlabMode& mode);
+
+/// The two forward modes (index 0 fast sheet, 1 slow sheet) for the tangential wavevector ξ: solves
+/// |N|²·(1/n_σ²(N̂)) = 1 for q along N = (ξ, q) on each sheet σ of the Biot–Fresnel index surface
+/// (eigenmodes.hpp) by Newton's method safeguarded with bisection (closed form for uniaxial crystals).
+/// `guess` (fast, slow), if finite, starts the iterations (e.g. the previous wavelength's roots).
+/// Returns false when a sheet has no propagating mode (|ξ| beyond its index: evanescent).
+bool solve_forward_modes(const BinormalFrame& frame, const Eigen::Vector2d& xi, const Eigen::Vector2d& guess,
+                         std::array<SlabMode, 2>& modes);
+
+/// The four modes of the crystal for one tangential wavevector.
 struct SlabModes {
     std::array<SlabMode, 2> forward;
     std::array<SlabMode, 2> backward;
     bool propagating = true;  // false when a sheet has no real solution (evanescent): no power crosses
 };
 
-/// Solves |N|²·(1/n_σ²(N̂)) = 1 for q along N = (ξ, q) on each sheet σ of the Biot–Fresnel index surface
-/// (eigenmodes.hpp), by Newton's method safeguarded with bisection (closed form for uniaxial crystals).
-/// `forward_guess` (fast, slow), if finite, starts the forward iterations (e.g. the previous wavelength's
-/// roots).
+/// Forward modes at ξ and backward modes as the time-reversed forward modes at −ξ.
 SlabModes solve_slab_modes(const BinormalFrame& frame, const TangentialWavevector& direction,
                            const Eigen::Vector2d& forward_guess);
 
