@@ -48,7 +48,7 @@ std::vector<double> conoscope_point_transmission(const ConoscopeSettings& settin
     const detail::ConoscopeEvaluator evaluator(settings, principal_n);
     std::vector<double> transmission(evaluator.wavelength_count()), opposite(evaluator.wavelength_count());
     detail::KernelScratch scratch;
-    evaluator.transmission_pair(xi, scratch, transmission.data(), opposite.data());
+    evaluator.spectral_pair(xi, scratch, false, transmission.data(), opposite.data());
     return transmission;
 }
 
@@ -70,28 +70,51 @@ Image render_conoscope(const ConoscopeSettings& settings, const PrincipalIndexFu
     // Pixels are done in pairs (column, row) and (size−1−column, size−1−row), whose directions are
     // opposite (ξ and −ξ): rows 0 … ⌈size/2⌉−1, and of the middle row of an odd size its first half.
     const int paired_rows = (size + 1) / 2;
+    // White light: XYZ of the transmission spectrum.
     const auto store = [&](int column, int row, const std::vector<double>& transmission) {
-        if (integrator == nullptr) {
-            image.at(column, row, 0) = static_cast<float>(transmission[0]);
-        } else {
-            const Eigen::Vector3d xyz = integrator->integrate(transmission);
-            for (int c = 0; c < 3; ++c) image.at(column, row, c) = static_cast<float>(xyz[c]);
-        }
+        const Eigen::Vector3d xyz = integrator->integrate(transmission);
+        for (int c = 0; c < 3; ++c) image.at(column, row, c) = static_cast<float>(xyz[c]);
     };
 #pragma omp parallel
     {
         std::vector<double> plus(evaluator.wavelength_count()), minus(evaluator.wavelength_count());
+        std::vector<Eigen::Vector2d> batch_xi;
+        std::vector<std::pair<int, int>> batch_pixels;
+        std::vector<double> batch_plus(detail::ConoscopeEvaluator::kMonochromaticBatch), batch_minus(batch_plus.size());
         detail::KernelScratch scratch;
+        // Monochromatic light: the row's pixel pairs go through the kernel together.
+        const auto flush_batch = [&] {
+            evaluator.monochromatic_pairs(batch_xi, scratch, batch_plus.data(), batch_minus.data());
+            for (std::size_t k = 0; k < batch_xi.size(); ++k) {
+                const auto [column, row] = batch_pixels[k];
+                image.at(column, row, 0) = static_cast<float>(batch_plus[k]);
+                image.at(size - 1 - column, size - 1 - row, 0) = static_cast<float>(batch_minus[k]);
+            }
+            batch_xi.clear();
+            batch_pixels.clear();
+        };
 #pragma omp for schedule(dynamic, 2)
         for (int row = 0; row < paired_rows; ++row) {
             const int columns = (size % 2 == 1 && row == size / 2) ? size / 2 + 1 : size;
+            bool continues_row = false;  // white light: the previous pixel's roots start the iterations
             for (int column = 0; column < columns; ++column) {
                 const Eigen::Vector2d xi = conoscope_tangential_wavevector(settings, column, row);
-                if (xi.squaredNorm() > aperture_squared) continue;
-                evaluator.transmission_pair(xi, scratch, plus.data(), minus.data());
+                if (xi.squaredNorm() > aperture_squared) {
+                    continues_row = false;
+                    continue;
+                }
+                if (integrator == nullptr) {
+                    batch_xi.push_back(xi);
+                    batch_pixels.emplace_back(column, row);
+                    if (batch_xi.size() == detail::ConoscopeEvaluator::kMonochromaticBatch) flush_batch();
+                    continue;
+                }
+                evaluator.spectral_pair(xi, scratch, continues_row, plus.data(), minus.data());
+                continues_row = true;
                 store(column, row, plus);
                 store(size - 1 - column, size - 1 - row, minus);
             }
+            if (!batch_xi.empty()) flush_batch();
             const int done = ++rows_done;
 #ifdef _OPENMP
             const bool reporter = omp_get_thread_num() == 0;

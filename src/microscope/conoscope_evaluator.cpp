@@ -38,6 +38,19 @@ std::vector<double> k0_thickness_for(const ConoscopeSettings& settings) {
     return values;
 }
 
+SampleCrystal samples_of(const std::vector<BinormalFrame>& frames, const std::vector<double>& k0_thickness,
+                         double surround_n, std::size_t repeat) {
+    std::vector<const BinormalFrame*> pointers;
+    std::vector<double> thickness;
+    for (std::size_t r = 0; r < repeat; ++r) {
+        for (std::size_t w = 0; w < frames.size(); ++w) {
+            pointers.push_back(&frames[w]);
+            thickness.push_back(k0_thickness[w]);
+        }
+    }
+    return SampleCrystal(pointers, std::vector<double>(pointers.size(), surround_n), thickness);
+}
+
 }  // namespace
 
 ConoscopeEvaluator::ConoscopeEvaluator(const ConoscopeSettings& settings, const PrincipalIndexFunction& principal_n)
@@ -45,17 +58,51 @@ ConoscopeEvaluator::ConoscopeEvaluator(const ConoscopeSettings& settings, const 
       polars_{unit_at(settings.polarizer_deg), unit_at(settings.analyzer_deg), settings.analyzer_in},
       frames_(frames_for(settings, principal_n)),
       k0_thickness_(k0_thickness_for(settings)),
-      crystal_(frames_, std::vector<double>(frames_.size(), settings.surround_n), k0_thickness_) {}
+      spectral_samples_(samples_of(frames_, k0_thickness_, settings.surround_n, 1)) {
+    if (frames_.size() == 1) monochromatic_samples_ = samples_of(frames_, k0_thickness_, settings.surround_n, kMonochromaticBatch);
+}
 
-void ConoscopeEvaluator::transmission_pair(const Eigen::Vector2d& xi, KernelScratch& scratch, double* out_plus,
-                                           double* out_minus) const {
-    scratch.resize(crystal_.padded_size());
-    if (!transmission_pair_kernel(crystal_, polars_, xi, scratch, out_plus, out_minus)) return;
-    for (std::size_t w = 0; w < frames_.size(); ++w) {
-        if (scratch.failed[w] == 0) continue;
-        const std::array<double, 2> reference = reference_pair(w, xi);
-        out_plus[w] = reference[0];
-        out_minus[w] = reference[1];
+void ConoscopeEvaluator::spectral_pair(const Eigen::Vector2d& xi, KernelScratch& scratch, bool continues_row,
+                                       double* out_plus, double* out_minus) const {
+    const std::size_t count = spectral_samples_.size();
+    if (scratch.failed.size() != spectral_samples_.padded_size()) {
+        scratch.resize(spectral_samples_.padded_size());
+        scratch.warm_ready = false;
+    }
+    for (std::size_t i = 0; i < spectral_samples_.padded_size(); ++i) set_sample_direction(scratch, i, xi);
+    const bool warm = continues_row && scratch.warm_ready;
+    bool any_failed = run_kernel(spectral_samples_, polars_, scratch, warm);
+    // A warm start too far from the roots (coarse pixels): start again from scratch, still vectorised.
+    if (any_failed && warm) any_failed = run_kernel(spectral_samples_, polars_, scratch, false);
+    for (std::size_t w = 0; w < count; ++w) {
+        if (any_failed && scratch.failed[w] != 0) {
+            const std::array<double, 2> reference = reference_pair(w, xi);
+            out_plus[w] = reference[0];
+            out_minus[w] = reference[1];
+        } else {
+            out_plus[w] = scratch.transmission[0][w];
+            out_minus[w] = scratch.transmission[1][w];
+        }
+    }
+}
+
+void ConoscopeEvaluator::monochromatic_pairs(const std::vector<Eigen::Vector2d>& xis, KernelScratch& scratch,
+                                             double* out_plus, double* out_minus) const {
+    if (xis.empty()) return;
+    // A shorter batch uses the first samples; the rest of the arrays repeat its last direction.
+    const SampleCrystal& samples = *monochromatic_samples_;
+    if (scratch.failed.size() != samples.padded_size()) scratch.resize(samples.padded_size());
+    for (std::size_t i = 0; i < samples.padded_size(); ++i) set_sample_direction(scratch, i, xis[std::min(i, xis.size() - 1)]);
+    const bool any_failed = run_kernel(samples, polars_, scratch, false);
+    for (std::size_t k = 0; k < xis.size(); ++k) {
+        if (any_failed && scratch.failed[k] != 0) {
+            const std::array<double, 2> reference = reference_pair(0, xis[k]);
+            out_plus[k] = reference[0];
+            out_minus[k] = reference[1];
+        } else {
+            out_plus[k] = scratch.transmission[0][k];
+            out_minus[k] = scratch.transmission[1][k];
+        }
     }
 }
 

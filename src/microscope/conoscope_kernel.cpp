@@ -8,94 +8,139 @@
 namespace petroscope::detail {
 namespace {
 
-// Newton steps after the fixed-point start; a sample is accepted when the last step moved q by less
-// than kConvergedStep·q (with quadratic convergence the remaining error is then below ε·q).
-constexpr int kNewtonSteps = 3;
-constexpr double kConvergedStep = 1e-12;
+// A sample is accepted when the last Newton step moved q by less than kConvergedStep·q: with quadratic
+// convergence the remaining error is about C·(kConvergedStep·q)², C = |g''/2g'| of order 1 away from the
+// binormals (and below 1e6 outside kNearBinormal of them), so below ε·q.
+constexpr double kConvergedStep = 1e-9;
 // Within this angle (rad) of a binormal the sheets are nearly degenerate: Newton converges only linearly
 // and the vibration directions come from near-cancelling projections, so the reference path takes over.
 constexpr double kNearBinormal = 1e-6;
 
-// The sheet equation of optics/slab.cpp, g_σ(q) = A|N|² + B((N·b₁)(N·b₂) + σ|N × b₁||N × b₂|) − 1,
-// divided by its derivative: the Newton step for one sample.
-inline double newton_step(double a, double b, double sigma, double xi2, double u1, double u2, double b1z, double b2z,
-                          double q) {
-    const double n2 = xi2 + q * q;
-    const double nb1 = u1 + q * b1z;
-    const double nb2 = u2 + q * b2z;
+// The sheet equation of optics/slab.cpp, g_σ(q) = A|N|² + B((N·b₁)(N·b₂) + σ|N × b₁||N × b₂|) − 1 with
+// N = (ξ, q), and its partial derivatives, for one sample.
+struct SheetValue {
+    double g, dg_dq, dg_dxi_x, dg_dxi_y;
+};
+
+inline SheetValue sheet_value(double a, double b, double sigma, double xi_x, double xi_y, double b1x, double b1y, double b1z,
+                              double b2x, double b2y, double b2z, double q) {
+    const double n2 = xi_x * xi_x + xi_y * xi_y + q * q;
+    const double nb1 = xi_x * b1x + xi_y * b1y + q * b1z;
+    const double nb2 = xi_x * b2x + xi_y * b2y + q * b2z;
     const double p1 = std::max(n2 - nb1 * nb1, 0.0);
     const double p2 = std::max(n2 - nb2 * nb2, 0.0);
     const double root = std::sqrt(p1 * p2);
-    const double dp1 = 2.0 * (q - nb1 * b1z);
-    const double dp2 = 2.0 * (q - nb2 * b2z);
-    const double droot = root > 0.0 ? 0.5 * (dp1 * p2 + p1 * dp2) / root : 0.0;
-    const double derivative = 2.0 * a * q + b * (b1z * nb2 + b2z * nb1 + sigma * droot);
-    return (a * n2 + b * (nb1 * nb2 + sigma * root) - 1.0) / derivative;
+    const double half_inverse_root = root > 0.0 ? 0.5 / root : 0.0;
+    // ∂/∂v of |N × b₁||N × b₂| for v = q, ξ_x, ξ_y, with ∂pᵢ/∂v = 2(N_v − (N·bᵢ)b_{i,v}).
+    const auto droot = [&](double n_v, double b1v, double b2v) {
+        return half_inverse_root * (2.0 * (n_v - nb1 * b1v) * p2 + p1 * 2.0 * (n_v - nb2 * b2v));
+    };
+    return {a * n2 + b * (nb1 * nb2 + sigma * root) - 1.0,
+            2.0 * a * q + b * (b1z * nb2 + b2z * nb1 + sigma * droot(q, b1z, b2z)),
+            2.0 * a * xi_x + b * (b1x * nb2 + b2x * nb1 + sigma * droot(xi_x, b1x, b2x)),
+            2.0 * a * xi_y + b * (b1y * nb2 + b2y * nb1 + sigma * droot(xi_y, b1y, b2y))};
 }
 
-// g_σ(q) + 1 = |N|²/n_σ(N̂)².
-inline double sheet_ratio(double a, double b, double sigma, double xi2, double u1, double u2, double b1z, double b2z,
-                          double q) {
-    const double n2 = xi2 + q * q;
-    const double nb1 = u1 + q * b1z;
-    const double nb2 = u2 + q * b2z;
-    const double p1 = std::max(n2 - nb1 * nb1, 0.0);
-    const double p2 = std::max(n2 - nb2 * nb2, 0.0);
-    return a * n2 + b * (nb1 * nb2 + sigma * std::sqrt(p1 * p2));
-}
+// Pointers to one sample array set, so that the loops see plain restrict-free arrays of doubles.
+struct CrystalArrays {
+    const double *a, *b, *inverse_n_beta2, *b1x, *b1y, *b1z, *b2x, *b2y, *b2z;
+    const double *eta_xx, *eta_yy, *eta_zz, *eta_xy, *eta_xz, *eta_yz;
+    explicit CrystalArrays(const SampleCrystal& c)
+        : a(c.half_sum.data()), b(c.half_difference.data()), inverse_n_beta2(c.inverse_n_beta2.data()),
+          b1x(c.binormal_1[0].data()), b1y(c.binormal_1[1].data()), b1z(c.binormal_1[2].data()),
+          b2x(c.binormal_2[0].data()), b2y(c.binormal_2[1].data()), b2z(c.binormal_2[2].data()),
+          eta_xx(c.impermeability[0].data()), eta_yy(c.impermeability[1].data()), eta_zz(c.impermeability[2].data()),
+          eta_xy(c.impermeability[3].data()), eta_xz(c.impermeability[4].data()), eta_yz(c.impermeability[5].data()) {}
+};
 
-// Forward modes on one sheet for the tangential wavevector (xi_x, xi_y) at every wavelength: q, and ψ
-// in the plane-of-incidence frame (rho_x, rho_y). Marks failures (no convergence, on a binormal,
-// evanescent) in `failed`.
-// Template parameters rather than arguments: a loop-invariant condition inside the loop body stops GCC's
-// vectoriser.
-template <bool Uniaxial, int Sheet>
-void solve_sheet(const SpectralCrystal& crystal, double xi_x, double xi_y, double rho_x, double rho_y,
-                 double* __restrict q_out, double* __restrict psi0, double* __restrict psi1, double* __restrict psi2,
-                 double* __restrict psi3, std::int64_t* __restrict failed) {
+// Newton starts for one side and sheet of a biaxial crystal. Cold: the isotropic guess |N| = nβ, one
+// fixed-point step q = √(n_σ(N̂)² − |ξ|²) and one Newton step. Warm: the previous roots moved along ∂q/∂ξ.
+// Side is a template parameter, as are the sheet and the mode elsewhere: a loop-invariant condition
+// inside the loop body stops GCC's vectoriser.
+template <int Sheet, int Side>
+void newton_starts(const SampleCrystal& crystal, KernelScratch& scratch, bool warm) {
     constexpr double sigma = Sheet == 0 ? 1.0 : -1.0;
-    const double xi2 = xi_x * xi_x + xi_y * xi_y;
-    const double s_x = -rho_y, s_y = rho_x;  // ŝ = ẑ × ρ̂
+    constexpr double direction = Side == 0 ? 1.0 : -1.0;
+    const CrystalArrays c(crystal);
+    const double *xi_x0 = scratch.xi_x.data(), *xi_y0 = scratch.xi_y.data();
+    double* start = scratch.q_start[Side][Sheet].data();
+    const int count = static_cast<int>(crystal.padded_size());
+    if (warm) {
+        const double *q = scratch.q[Side][Sheet].data(), *dq_x = scratch.dq_dxi_x[Side][Sheet].data();
+        const double *dq_y = scratch.dq_dxi_y[Side][Sheet].data();
+        const double *previous_x = scratch.previous_xi_x[Side].data(), *previous_y = scratch.previous_xi_y[Side].data();
+#pragma omp simd
+        for (int i = 0; i < count; ++i) {
+            start[i] = q[i] + dq_x[i] * (direction * xi_x0[i] - previous_x[i]) + dq_y[i] * (direction * xi_y0[i] - previous_y[i]);
+        }
+        return;
+    }
+#pragma omp simd
+    for (int i = 0; i < count; ++i) {
+        const double xi_x = direction * xi_x0[i], xi_y = direction * xi_y0[i];
+        const double xi2 = xi_x * xi_x + xi_y * xi_y;
+        const double q_iso = std::sqrt(std::max(1.0 / c.inverse_n_beta2[i] - xi2, 1e-6));
+        const SheetValue iso = sheet_value(c.a[i], c.b[i], sigma, xi_x, xi_y, c.b1x[i], c.b1y[i], c.b1z[i], c.b2x[i],
+                                           c.b2y[i], c.b2z[i], q_iso);
+        // g + 1 = |N|²/n_σ(N̂)².
+        double q = std::sqrt(std::max((xi2 + q_iso * q_iso) / (iso.g + 1.0) - xi2, 1e-6));
+        const SheetValue first = sheet_value(c.a[i], c.b[i], sigma, xi_x, xi_y, c.b1x[i], c.b1y[i], c.b1z[i], c.b2x[i],
+                                             c.b2y[i], c.b2z[i], q);
+        start[i] = q - first.g / first.dg_dq;
+    }
+}
+
+// The forward mode of one side and sheet at every sample: q (two Newton steps from the start, or the
+// closed form for a uniaxial crystal), ∂q/∂ξ, and ψ in the side's plane-of-incidence frame.
+template <bool Uniaxial, int Sheet, int Side>
+void solve_modes(const SampleCrystal& crystal, KernelScratch& scratch) {
+    constexpr double sigma = Sheet == 0 ? 1.0 : -1.0;
+    constexpr double direction = Side == 0 ? 1.0 : -1.0;
+    const CrystalArrays c(crystal);
     const double orientation = crystal.uniaxial_orientation;
-    const double* half_sum = crystal.half_sum.data();
-    const double* half_difference = crystal.half_difference.data();
-    const double* inverse_n_beta2 = crystal.inverse_n_beta2.data();
-    const double *b1x = crystal.binormal_1[0].data(), *b1y = crystal.binormal_1[1].data(), *b1z = crystal.binormal_1[2].data();
-    const double *b2x = crystal.binormal_2[0].data(), *b2y = crystal.binormal_2[1].data(), *b2z = crystal.binormal_2[2].data();
-    const double *eta_xx = crystal.impermeability[0].data(), *eta_yy = crystal.impermeability[1].data();
-    const double *eta_zz = crystal.impermeability[2].data(), *eta_xy = crystal.impermeability[3].data();
-    const double *eta_xz = crystal.impermeability[4].data(), *eta_yz = crystal.impermeability[5].data();
+    const double *xi_x0 = scratch.xi_x.data(), *xi_y0 = scratch.xi_y.data();
+    const double *rho_x0 = scratch.rho_x.data(), *rho_y0 = scratch.rho_y.data(), *reversal = scratch.reversal.data();
+    const double* start = scratch.q_start[Side][Sheet].data();
+    double *q_out = scratch.q[Side][Sheet].data(), *dq_x = scratch.dq_dxi_x[Side][Sheet].data();
+    double* dq_y = scratch.dq_dxi_y[Side][Sheet].data();
+    auto& psi = scratch.psi[Side][Sheet];
+    double *psi0 = psi[0].data(), *psi1 = psi[1].data(), *psi2 = psi[2].data(), *psi3 = psi[3].data();
+    std::int64_t* failed = scratch.sheet_failed[Side][Sheet].data();
     const int count = static_cast<int>(crystal.padded_size());
 #pragma omp simd
     for (int i = 0; i < count; ++i) {
-        const double a = half_sum[i], b = half_difference[i], bz1 = b1z[i], bz2 = b2z[i];
-        const double u1 = xi_x * b1x[i] + xi_y * b1y[i];
-        const double u2 = xi_x * b2x[i] + xi_y * b2y[i];
-        // |ξ| at or beyond the sheet's index: no propagating mode (g(0) ≥ 0).
-        const bool evanescent = sheet_ratio(a, b, sigma, xi2, u1, u2, bz1, bz2, 0.0) >= 1.0;
+        const double xi_x = direction * xi_x0[i], xi_y = direction * xi_y0[i];
+        const double rho_sign = Side == 0 ? 1.0 : reversal[i];
+        const double rho_x = rho_sign * rho_x0[i], rho_y = rho_sign * rho_y0[i];
+        const double s_x = -rho_y, s_y = rho_x;  // ŝ = ẑ × ρ̂
+        const double xi2 = xi_x * xi_x + xi_y * xi_y;
         double q = 0.0;
         double last_step = 0.0;
         if constexpr (Uniaxial) {
             // Closed form: the quadratic of optics/slab.cpp (forward_quadratic_root).
-            const double level = a + sigma * b;
-            const double cross = b * (orientation - sigma);
-            const double alpha = level + cross * bz1 * bz1;
-            const double beta = 2.0 * cross * u1 * bz1;
+            const double u1 = xi_x * c.b1x[i] + xi_y * c.b1y[i];
+            const double level = c.a[i] + sigma * c.b[i];
+            const double cross = c.b[i] * (orientation - sigma);
+            const double alpha = level + cross * c.b1z[i] * c.b1z[i];
+            const double beta = 2.0 * cross * u1 * c.b1z[i];
             const double gamma = level * xi2 + cross * u1 * u1 - 1.0;
             const double t = -0.5 * (beta + std::copysign(std::sqrt(std::max(beta * beta - 4.0 * alpha * gamma, 0.0)), beta));
             const double other_root = t != 0.0 ? gamma / t : -t / alpha;
             q = std::max(t / alpha, other_root);
+            // No real root (g(0) ≥ 0): evanescent; the reference path reports it.
+            last_step = gamma >= 0.0 ? 1.0 : 0.0;
         } else {
-            // Start: the isotropic guess |N| = nβ, then one fixed-point step q = √(n_σ(N̂)² − |ξ|²); then
-            // kNewtonSteps Newton steps (written out: the vectoriser takes no inner loops).
-            static_assert(kNewtonSteps == 3);
-            const double q_iso = std::sqrt(std::max(1.0 / inverse_n_beta2[i] - xi2, 1e-6));
-            const double ratio = sheet_ratio(a, b, sigma, xi2, u1, u2, bz1, bz2, q_iso);
-            q = std::sqrt(std::max((xi2 + q_iso * q_iso) / ratio - xi2, 1e-6));
-            q -= newton_step(a, b, sigma, xi2, u1, u2, bz1, bz2, q);
-            q -= newton_step(a, b, sigma, xi2, u1, u2, bz1, bz2, q);
-            last_step = newton_step(a, b, sigma, xi2, u1, u2, bz1, bz2, q);
+            q = start[i];
+            const SheetValue first = sheet_value(c.a[i], c.b[i], sigma, xi_x, xi_y, c.b1x[i], c.b1y[i], c.b1z[i], c.b2x[i],
+                                                 c.b2y[i], c.b2z[i], q);
+            q -= first.g / first.dg_dq;
+            const SheetValue second = sheet_value(c.a[i], c.b[i], sigma, xi_x, xi_y, c.b1x[i], c.b1y[i], c.b1z[i], c.b2x[i],
+                                                  c.b2y[i], c.b2z[i], q);
+            last_step = second.g / second.dg_dq;
             q -= last_step;
+            // Implicit function theorem at the root: ∂q/∂ξ = −(∂g/∂ξ)/(∂g/∂q), ξ of this side.
+            dq_x[i] = -second.dg_dxi_x / second.dg_dq;
+            dq_y[i] = -second.dg_dxi_y / second.dg_dq;
         }
         // Vibration direction (physics notes §2) from unnormalised projections of the binormals on the
         // plane ⟂ N, vᵢ = |N|²bᵢ − (N·bᵢ)N: S = |v₂|v₁ + |v₁|v₂ ∥ p̂₁ + p̂₂ (slow) and
@@ -103,17 +148,16 @@ void solve_sheet(const SpectralCrystal& crystal, double xi_x, double xi_y, doubl
         // weights are their computed norms; the longer is used, the other mode's is N × it.
         const double nx = xi_x, ny = xi_y, nz = q;
         const double n2 = xi2 + q * q;
-        const double nb1 = u1 + q * bz1;
-        const double nb2 = u2 + q * bz2;
-        const double v1x = n2 * b1x[i] - nb1 * nx, v1y = n2 * b1y[i] - nb1 * ny, v1z = n2 * bz1 - nb1 * nz;
-        const double v2x = n2 * b2x[i] - nb2 * nx, v2y = n2 * b2y[i] - nb2 * ny, v2z = n2 * bz2 - nb2 * nz;
+        const double nb1 = xi_x * c.b1x[i] + xi_y * c.b1y[i] + q * c.b1z[i];
+        const double nb2 = xi_x * c.b2x[i] + xi_y * c.b2y[i] + q * c.b2z[i];
+        const double v1x = n2 * c.b1x[i] - nb1 * nx, v1y = n2 * c.b1y[i] - nb1 * ny, v1z = n2 * c.b1z[i] - nb1 * nz;
+        const double v2x = n2 * c.b2x[i] - nb2 * nx, v2y = n2 * c.b2y[i] - nb2 * ny, v2z = n2 * c.b2z[i] - nb2 * nz;
         const double r1 = std::sqrt(v1x * v1x + v1y * v1y + v1z * v1z);
         const double r2 = std::sqrt(v2x * v2x + v2y * v2y + v2z * v2z);
         const double sx = r2 * v1x + r1 * v2x, sy = r2 * v1y + r1 * v2y, sz = r2 * v1z + r1 * v2z;
         const double tx = r2 * v1x - r1 * v2x, ty = r2 * v1y - r1 * v2y, tz = r2 * v1z - r1 * v2z;
         const double s_norm2 = sx * sx + sy * sy + sz * sz;
         const double t_norm2 = tx * tx + ty * ty + tz * tz;
-        // Own direction if it is the longer one, else N × (the other's direction).
         const bool own_longer = Sheet == 0 ? t_norm2 >= s_norm2 : s_norm2 >= t_norm2;
         const double ox = Sheet == 0 ? tx : sx, oy = Sheet == 0 ? ty : sy, oz = Sheet == 0 ? tz : sz;
         const double ax = Sheet == 0 ? sx : tx, ay = Sheet == 0 ? sy : ty, az = Sheet == 0 ? sz : tz;
@@ -121,9 +165,9 @@ void solve_sheet(const SpectralCrystal& crystal, double xi_x, double xi_y, doubl
         const double dy = own_longer ? oy : nz * ax - nx * az;
         const double dz = own_longer ? oz : nx * ay - ny * ax;
         // E = η·D, H = N × E.
-        const double ex = eta_xx[i] * dx + eta_xy[i] * dy + eta_xz[i] * dz;
-        const double ey = eta_xy[i] * dx + eta_yy[i] * dy + eta_yz[i] * dz;
-        const double ez = eta_xz[i] * dx + eta_yz[i] * dy + eta_zz[i] * dz;
+        const double ex = c.eta_xx[i] * dx + c.eta_xy[i] * dy + c.eta_xz[i] * dz;
+        const double ey = c.eta_xy[i] * dx + c.eta_yy[i] * dy + c.eta_yz[i] * dz;
+        const double ez = c.eta_xz[i] * dx + c.eta_yz[i] * dy + c.eta_zz[i] * dz;
         const double hx = ny * ez - nz * ey, hy = nz * ex - nx * ez;
         q_out[i] = q;
         psi0[i] = ex * rho_x + ey * rho_y;
@@ -133,7 +177,7 @@ void solve_sheet(const SpectralCrystal& crystal, double xi_x, double xi_y, doubl
         // |vᵢ| = |N|²·sin(angle to bᵢ).
         const bool near_binormal = std::min(r1, r2) <= kNearBinormal * n2;
         const bool converged = std::abs(last_step) <= kConvergedStep * q && q > 0.0;
-        failed[i] = static_cast<std::int64_t>(evanescent || !converged || near_binormal || !std::isfinite(q));
+        failed[i] = static_cast<std::int64_t>(!converged || near_binormal || !std::isfinite(q));
     }
 }
 
@@ -146,17 +190,13 @@ inline double pair_intensity(double c0, double c1, double sin2) {
 
 // Single-pass transmission for one side from its forward modes and the other side's (time-reversed:
 // the backward modes), after optics/slab.cpp's slab_transfer and the conoscope's analyzed intensity.
-template <bool AnalyzerIn>
-void side_transmission(const SpectralCrystal& crystal, const PolarizerPair& polars, double xi2, double rho_x,
-                       double rho_y, double reversal_sign, const KernelScratch& scratch, int side, double* __restrict out) {
-    const int other = 1 - side;
-    const double s_x = -rho_y, s_y = rho_x;
-    const double p_s = polars.polarizer.x() * s_x + polars.polarizer.y() * s_y;
-    const double p_p = polars.polarizer.x() * rho_x + polars.polarizer.y() * rho_y;
-    const double a_s = polars.analyzer.x() * s_x + polars.analyzer.y() * s_y;
-    const double a_p = polars.analyzer.x() * rho_x + polars.analyzer.y() * rho_y;
-    const double *qf = scratch.q[side][0].data(), *qs = scratch.q[side][1].data();
-    const auto& own = scratch.psi[side];
+template <bool AnalyzerIn, int Side>
+void side_transmission(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch) {
+    constexpr int other = 1 - Side;
+    const double *rho_x0 = scratch.rho_x.data(), *rho_y0 = scratch.rho_y.data(), *reversal = scratch.reversal.data();
+    const double *xi_x0 = scratch.xi_x.data(), *xi_y0 = scratch.xi_y.data();
+    const double *qf = scratch.q[Side][0].data(), *qs = scratch.q[Side][1].data();
+    const auto& own = scratch.psi[Side];
     const auto& opposite = scratch.psi[other];
     const double *f0 = own[0][0].data(), *f1 = own[0][1].data(), *f2 = own[0][2].data(), *f3 = own[0][3].data();
     const double *s0 = own[1][0].data(), *s1 = own[1][1].data(), *s2 = own[1][2].data(), *s3 = own[1][3].data();
@@ -164,16 +204,26 @@ void side_transmission(const SpectralCrystal& crystal, const PolarizerPair& pola
     const double *bs0 = opposite[1][0].data(), *bs1 = opposite[1][1].data(), *bs2 = opposite[1][2].data(), *bs3 = opposite[1][3].data();
     const double* surround = crystal.surround_n.data();
     const double* k0_thickness = crystal.k0_thickness.data();
-    const double kappa = reversal_sign;  // ρ̂·ρ̂' of the two sides: −1, or +1 at ξ = 0
+    double* out = scratch.transmission[Side].data();
+    const double pol_x = polars.polarizer.x(), pol_y = polars.polarizer.y();
+    const double ana_x = polars.analyzer.x(), ana_y = polars.analyzer.y();
     const int count = static_cast<int>(crystal.padded_size());
 #pragma omp simd
     for (int i = 0; i < count; ++i) {
+        const double rho_sign = Side == 0 ? 1.0 : reversal[i];
+        const double rho_x = rho_sign * rho_x0[i], rho_y = rho_sign * rho_y0[i];
+        const double s_x = -rho_y, s_y = rho_x;
+        const double xi2 = xi_x0[i] * xi_x0[i] + xi_y0[i] * xi_y0[i];
+        // The aplanatic condenser and objective keep each ray's s and p amplitudes (conoscope_evaluator.cpp).
+        const double p_s = pol_x * s_x + pol_y * s_y, p_p = pol_x * rho_x + pol_y * rho_y;
+        const double a_s = ana_x * s_x + ana_y * s_y, a_p = ana_x * rho_x + ana_y * rho_y;
         const double n = surround[i];
         const double inverse_q = 1.0 / std::sqrt(n * n - xi2);
         const double n_over_q = n * inverse_q, inverse_n = 1.0 / n;
         // Amplitudes of the isotropic medium's forward (+) and backward (−) s and p waves in a field ψ:
         // s: (ψ₃ ± ψ₄/Q)/2, p: (ψ₁n/Q ± ψ₂/n)/2 (optics/slab.cpp).
-        // Backward modes: ψ_b = (κψ'₁, −κψ'₂, κψ'₃, −κψ'₄) of the other side's forward modes.
+        // Backward modes: ψ_b = (κψ'₁, −κψ'₂, κψ'₃, −κψ'₄) of the other side's forward modes, κ = ρ̂·ρ̂'.
+        const double kappa = reversal[i];
         const double bf_0 = kappa * bf0[i], bf_1 = -kappa * bf1[i], bf_2 = kappa * bf2[i], bf_3 = -kappa * bf3[i];
         const double bs_0 = kappa * bs0[i], bs_1 = -kappa * bs1[i], bs_2 = kappa * bs2[i], bs_3 = -kappa * bs3[i];
         // F = A⁺Ψ⁺ (rows s, p; columns fast, slow); entrance and exit media are the same.
@@ -204,18 +254,31 @@ void side_transmission(const SpectralCrystal& crystal, const PolarizerPair& pola
     }
 }
 
+template <bool Uniaxial, int Side>
+void solve_side(const SampleCrystal& crystal, KernelScratch& scratch, bool warm) {
+    if constexpr (!Uniaxial) {
+        newton_starts<0, Side>(crystal, scratch, warm);
+        newton_starts<1, Side>(crystal, scratch, warm);
+    }
+    solve_modes<Uniaxial, 0, Side>(crystal, scratch);
+    solve_modes<Uniaxial, 1, Side>(crystal, scratch);
+}
+
 }  // namespace
 
-SpectralCrystal::SpectralCrystal(const std::vector<BinormalFrame>& frames, const std::vector<double>& surround,
-                                 const std::vector<double>& k0_thickness_values)
+std::size_t padded_length(std::size_t samples) {
+    // Fewer samples than lanes run in the scalar loop: padding would multiply the work.
+    return samples < kLanes ? samples : (samples + kLanes - 1) / kLanes * kLanes;
+}
+
+SampleCrystal::SampleCrystal(const std::vector<const BinormalFrame*>& frames, const std::vector<double>& surround,
+                             const std::vector<double>& k0_thickness_values)
     : count(frames.size()) {
-    uniaxial = !frames.empty() && frames.front().uniaxial();
-    if (uniaxial) uniaxial_orientation = frames.front().binormal_1.dot(frames.front().binormal_2);
-    // Fewer samples than lanes (monochromatic light) run in the scalar loop: padding would multiply the work.
-    const std::size_t padded = count < kLanes ? count : (count + kLanes - 1) / kLanes * kLanes;
-    for (std::size_t j = 0; j < padded; ++j) {
-        const std::size_t w = std::min(j, count - 1);  // padding repeats the last wavelength
-        const BinormalFrame& frame = frames[w];
+    uniaxial = !frames.empty() && frames.front()->uniaxial();
+    if (uniaxial) uniaxial_orientation = frames.front()->binormal_1.dot(frames.front()->binormal_2);
+    for (std::size_t j = 0; j < padded_length(count); ++j) {
+        const std::size_t w = std::min(j, count - 1);  // padding repeats the last sample
+        const BinormalFrame& frame = *frames[w];
         half_sum.push_back(0.5 * (frame.a + frame.c));
         half_difference.push_back(0.5 * (frame.a - frame.c));
         inverse_n_beta2.push_back(frame.b);
@@ -231,45 +294,57 @@ SpectralCrystal::SpectralCrystal(const std::vector<BinormalFrame>& frames, const
     }
 }
 
-void KernelScratch::resize(std::size_t padded_wavelengths) {
-    for (auto& side : q) for (auto& sheet : side) sheet.resize(padded_wavelengths);
-    for (auto& side : psi) for (auto& sheet : side) for (auto& component : sheet) component.resize(padded_wavelengths);
-    for (auto& side : sheet_failed) for (auto& sheet : side) sheet.resize(padded_wavelengths);
-    for (auto& side : transmission) side.resize(padded_wavelengths);
-    failed.resize(padded_wavelengths);
+void KernelScratch::resize(std::size_t padded_samples) {
+    for (auto* array : {&xi_x, &xi_y, &rho_x, &rho_y, &reversal}) array->resize(padded_samples);
+    for (auto* set : {&q_start, &q, &dq_dxi_x, &dq_dxi_y}) {
+        for (auto& side : *set) for (auto& sheet : side) sheet.resize(padded_samples);
+    }
+    for (auto& side : psi) for (auto& sheet : side) for (auto& component : sheet) component.resize(padded_samples);
+    for (auto& side : sheet_failed) for (auto& sheet : side) sheet.resize(padded_samples);
+    for (auto* set : {&previous_xi_x, &previous_xi_y, &transmission}) for (auto& side : *set) side.resize(padded_samples);
+    failed.resize(padded_samples);
 }
 
-bool transmission_pair_kernel(const SpectralCrystal& crystal, const PolarizerPair& polars, const Eigen::Vector2d& xi,
-                              KernelScratch& scratch, double* out_plus, double* out_minus) {
+void set_sample_direction(KernelScratch& scratch, std::size_t i, const Eigen::Vector2d& xi) {
     const double length = xi.norm();
-    const Eigen::Vector2d radial = length > 0.0 ? Eigen::Vector2d(xi / length) : Eigen::Vector2d::UnitX();
-    // ρ̂ of −ξ is −ρ̂, except at ξ = 0 where both sides use x̂.
-    const std::array<Eigen::Vector2d, 2> radials{radial, length > 0.0 ? Eigen::Vector2d(-radial) : radial};
-    const std::array<Eigen::Vector2d, 2> xis{xi, -xi};
-    using SheetSolver = void (*)(const SpectralCrystal&, double, double, double, double, double*, double*, double*, double*,
-                                 double*, std::int64_t*);
-    const std::array<SheetSolver, 2> solvers = crystal.uniaxial ? std::array<SheetSolver, 2>{solve_sheet<true, 0>, solve_sheet<true, 1>}
-                                                                : std::array<SheetSolver, 2>{solve_sheet<false, 0>, solve_sheet<false, 1>};
-    for (int side = 0; side < 2; ++side) {
-        for (int sheet = 0; sheet < 2; ++sheet) {
-            auto& psi = scratch.psi[side][sheet];
-            solvers[sheet](crystal, xis[side].x(), xis[side].y(), radials[side].x(), radials[side].y(), scratch.q[side][sheet].data(),
-                           psi[0].data(), psi[1].data(), psi[2].data(), psi[3].data(), scratch.sheet_failed[side][sheet].data());
-        }
+    scratch.xi_x[i] = xi.x();
+    scratch.xi_y[i] = xi.y();
+    // ρ̂ = ξ/|ξ|, x̂ at ξ = 0; the opposite side's ρ̂ is −ρ̂, except at ξ = 0 where both use x̂.
+    scratch.rho_x[i] = length > 0.0 ? xi.x() / length : 1.0;
+    scratch.rho_y[i] = length > 0.0 ? xi.y() / length : 0.0;
+    scratch.reversal[i] = length > 0.0 ? -1.0 : 1.0;
+}
+
+bool run_kernel(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch, bool warm) {
+    if (crystal.uniaxial) {
+        solve_side<true, 0>(crystal, scratch, warm);
+        solve_side<true, 1>(crystal, scratch, warm);
+    } else {
+        solve_side<false, 0>(crystal, scratch, warm);
+        solve_side<false, 1>(crystal, scratch, warm);
     }
-    const double reversal_sign = length > 0.0 ? -1.0 : 1.0;
-    const auto transmit = polars.analyzer_in ? side_transmission<true> : side_transmission<false>;
-    transmit(crystal, polars, length * length, radials[0].x(), radials[0].y(), reversal_sign, scratch, 0, scratch.transmission[0].data());
-    transmit(crystal, polars, length * length, radials[1].x(), radials[1].y(), reversal_sign, scratch, 1, scratch.transmission[1].data());
+    if (polars.analyzer_in) {
+        side_transmission<true, 0>(crystal, polars, scratch);
+        side_transmission<true, 1>(crystal, polars, scratch);
+    } else {
+        side_transmission<false, 0>(crystal, polars, scratch);
+        side_transmission<false, 1>(crystal, polars, scratch);
+    }
     // A sample needs all four modes (each side's backward modes are the other side's forward ones).
     bool any_failed = false;
+    const auto& f = scratch.sheet_failed;
     for (std::size_t i = 0; i < crystal.size(); ++i) {
-        const auto& f = scratch.sheet_failed;
-        out_plus[i] = scratch.transmission[0][i];
-        out_minus[i] = scratch.transmission[1][i];
-        const bool finite = std::isfinite(out_plus[i]) && std::isfinite(out_minus[i]);
+        const bool finite = std::isfinite(scratch.transmission[0][i]) && std::isfinite(scratch.transmission[1][i]);
         scratch.failed[i] = static_cast<std::int64_t>(f[0][0][i] | f[0][1][i] | f[1][0][i] | f[1][1][i] | !finite);
         any_failed = any_failed || scratch.failed[i] != 0;
+    }
+    // The next call may start from these roots only if all of them are good.
+    scratch.warm_ready = !any_failed;
+    for (std::size_t i = 0; i < crystal.padded_size(); ++i) {
+        scratch.previous_xi_x[0][i] = scratch.xi_x[i];
+        scratch.previous_xi_y[0][i] = scratch.xi_y[i];
+        scratch.previous_xi_x[1][i] = -scratch.xi_x[i];
+        scratch.previous_xi_y[1][i] = -scratch.xi_y[i];
     }
     return any_failed;
 }

@@ -1,8 +1,10 @@
 #pragma once
-// The conoscope's inner loop: one pair of opposite directions (ξ, −ξ) at every wavelength, written as
-// straight-line loops over wavelength arrays so that the compiler vectorises them. Samples whose Newton
-// iterations do not converge, or that sit exactly on a binormal, are flagged and recomputed by the
-// reference path (optics/slab.hpp), which the tests compare this kernel against.
+// The conoscope's inner loop: batches of samples, each a pair of opposite directions (ξ, −ξ) at one
+// wavelength, written as straight-line loops over sample arrays so that the compiler vectorises them.
+// White light: one pixel pair at every wavelength (warm-started from the previous pixel of the row);
+// monochromatic light: many pixel pairs at one wavelength. Samples whose Newton iterations do not
+// converge, or that lie within 1e-6 rad of a binormal, are flagged and recomputed by the reference path
+// (optics/slab.hpp), which the tests compare this kernel against.
 #include "petroscope/optics/indicatrix.hpp"
 
 #include <Eigen/Core>
@@ -13,17 +15,20 @@
 
 namespace petroscope::detail {
 
-/// Arrays are padded to a multiple of this many samples (repeating the last wavelength) so that every
+/// Sample arrays are padded to a multiple of this many samples (repeating the last one) so that every
 /// sample goes through the vector loop; 8 doubles fill an AVX-512 register.
 constexpr std::size_t kLanes = 8;
 
-/// Per-wavelength crystal and stack constants, one array element per wavelength (plus padding).
-struct SpectralCrystal {
-    explicit SpectralCrystal(const std::vector<BinormalFrame>& frames, const std::vector<double>& surround_n,
-                             const std::vector<double>& k0_thickness);
+std::size_t padded_length(std::size_t samples);
 
-    std::size_t size() const { return count; }                 // wavelengths
-    std::size_t padded_size() const { return half_sum.size(); }  // array length
+/// Crystal and stack constants per sample: one BinormalFrame per sample (a wavelength each in white
+/// light, the same one repeated in monochromatic light).
+struct SampleCrystal {
+    SampleCrystal(const std::vector<const BinormalFrame*>& frames, const std::vector<double>& surround_n,
+                  const std::vector<double>& k0_thickness);
+
+    std::size_t size() const { return count; }
+    std::size_t padded_size() const { return half_sum.size(); }
     std::size_t count = 0;
     bool uniaxial = false;
     double uniaxial_orientation = 1.0;  // b₁·b₂ = ±1 for a uniaxial crystal
@@ -40,22 +45,30 @@ struct PolarizerPair {
     bool analyzer_in = true;
 };
 
-/// Scratch arrays reused across pixels (one per thread).
+/// Per-sample arrays reused across batches (one set per thread). Index [side]: 0 for ξ, 1 for −ξ.
 struct KernelScratch {
-    void resize(std::size_t padded_wavelengths);
-    // [side][sheet]: q and the tangential field ψ₁…ψ₄ of each forward mode.
-    std::array<std::array<std::vector<double>, 2>, 2> q;
+    void resize(std::size_t padded_samples);
+
+    // Geometry of side 0 per sample; side 1 has −ξ and ρ̂ times `reversal` (−1, or +1 at ξ = 0).
+    std::vector<double> xi_x, xi_y, rho_x, rho_y, reversal;
+    // [side][sheet]: the Newton start, q, ∂q/∂ξ (for the next pixel's start) and ψ₁…ψ₄ of each mode.
+    std::array<std::array<std::vector<double>, 2>, 2> q_start, q, dq_dxi_x, dq_dxi_y;
     std::array<std::array<std::array<std::vector<double>, 4>, 2>, 2> psi;
+    std::array<std::vector<double>, 2> previous_xi_x, previous_xi_y;  // [side], for the warm start
     // Flags are 8-byte integers: a narrower type would make the vectoriser process 64 samples at a time.
-    std::array<std::array<std::vector<std::int64_t>, 2>, 2> sheet_failed;  // [side][sheet]
-    std::array<std::vector<double>, 2> transmission;                        // [side], padded
-    std::vector<std::int64_t> failed;  // per wavelength: recompute this sample with the reference path
+    std::array<std::array<std::vector<std::int64_t>, 2>, 2> sheet_failed;
+    std::array<std::vector<double>, 2> transmission;
+    std::vector<std::int64_t> failed;  // per sample: recompute with the reference path
+    bool warm_ready = false;           // the last run's roots can start the next run's iterations
 };
 
-/// Transmission at every wavelength for ξ (into out_plus) and −ξ (into out_minus). Returns whether any
-/// sample was flagged in scratch.failed for the reference path (the caller recomputes those).
-bool transmission_pair_kernel(const SpectralCrystal& crystal, const PolarizerPair& polars,
-                                             const Eigen::Vector2d& xi, KernelScratch& scratch, double* out_plus,
-                                             double* out_minus);
+/// Sets the geometry of sample i to the pair (ξ, −ξ).
+void set_sample_direction(KernelScratch& scratch, std::size_t i, const Eigen::Vector2d& xi);
+
+/// Transmission of every sample into scratch.transmission[side]. With `warm` (allowed when
+/// scratch.warm_ready), each sample's Newton iterations start from the previous run's roots moved along
+/// ∂q/∂ξ: the samples must be the same wavelengths as then, at a nearby ξ. Returns whether any sample was
+/// flagged in scratch.failed.
+bool run_kernel(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch, bool warm);
 
 }  // namespace petroscope::detail
