@@ -44,10 +44,14 @@ void expect_rings_at_analytic_radii(const std::string& name, double thickness_um
             if (radius_px < 0.97 * size / 2) measured.push_back(radius_px);
         }
         ASSERT_EQ(measured.size(), expected_xi.size()) << name;
+        double worst = 0.0;
         for (std::size_t m = 0; m < measured.size(); ++m) {
             const double expected_px = expected_xi[m] / settings.numerical_aperture * size / 2;
             EXPECT_NEAR(measured[m], expected_px, 0.5) << name << " ring " << m + 1;
+            worst = std::max(worst, std::abs(measured[m] - expected_px));
         }
+        std::printf("%s %.0f um: %zu dark rings, largest radius error %.3f px at 1024^2\n", name.c_str(), thickness_um,
+                    measured.size(), worst);
     }
 }
 
@@ -76,6 +80,34 @@ TEST(ConoscopeUniaxial, DarkCrossLiesAlongPolarizerAndAnalyzer) {
             diagonals += testing::sample_bilinear(figure, c + radius * std::cos(p + M_PI / 4), c - radius * std::sin(p + M_PI / 4));
         }
         EXPECT_LT(arms, 0.01 * diagonals);
+    }
+}
+
+TEST(ConoscopeUniaxial, ImageFrameIsNorthUpEastRightAndAzimuthCounterClockwise) {
+    // docs/conventions.md: the optic axis tilted toward azimuth φ exits at azimuth φ on the image, with
+    // φ = 0 to the right (East) and φ = 90° up (North).
+    const Mineral& calcite = testing::repository_minerals().find("calcite");
+    const Eigen::Vector3d n = calcite.principal_n(589.3);
+    for (const double azimuth : {0.0, 90.0, 200.0}) {
+        ConoscopeSettings settings = testing::figure_settings(calcite, Cut::optic_axis, 5.0, 256);
+        settings.crystal_axes = cut_orientation(Cut::optic_axis, OpticalClass::uniaxial, n, azimuth, 15.0);
+        const Image map = testing::retardation_map(settings, testing::indices_of(calcite));
+        // Where the optic axis leaves the slab: the darkest point of the retardation map over the field.
+        Eigen::Vector2d guess(128.0, 128.0);
+        float darkest = 1e30f;
+        for (int y = 8; y < 248; ++y) {
+            for (int x = 8; x < 248; ++x) {
+                const Eigen::Vector2d xi = conoscope_tangential_wavevector(settings, x, y);
+                if (xi.norm() < 0.9 * settings.numerical_aperture && map.at(x, y, 0) < darkest) {
+                    darkest = map.at(x, y, 0);
+                    guess = {x, y};
+                }
+            }
+        }
+        const Eigen::Vector2d found = testing::darkest_point(map, guess, 2);
+        const double measured = std::atan2(found.y(), found.x()) * 180.0 / M_PI;
+        EXPECT_NEAR(std::remainder(measured - azimuth, 360.0), 0.0, 1.0) << azimuth;
+        EXPECT_GT(found.norm(), 10.0);
     }
 }
 
