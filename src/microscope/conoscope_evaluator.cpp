@@ -1,5 +1,7 @@
 #include "conoscope_evaluator.hpp"
 
+#include "interference.hpp"
+
 #include "petroscope/core/error.hpp"
 #include "petroscope/optics/orientation.hpp"
 
@@ -131,17 +133,11 @@ double ConoscopeEvaluator::analyzed_intensity(const SlabTransfer& transfer, cons
     // Richards & Wolf 1959): the polarizer's field P splits as (P·ŝ, P·ρ̂) in the (s, p) basis.
     const Eigen::Vector2d incident(polars_.polarizer.dot(direction.azimuthal), polars_.polarizer.dot(direction.radial));
     // Mode amplitudes are real for a lossless crystal between lossless media below the critical angle, so
-    // each output amplitude is Σₘ cₘ·exp(iφₘ) with real cₘ, and |c₀e^{iφ₀} + c₁e^{iφ₁}|² =
-    // (c₀ − c₁)² + 4c₀c₁cos²(δ/2) = (c₀ + c₁)² − 4c₀c₁sin²(δ/2), δ = φ₀ − φ₁; the form whose terms are both
-    // non-negative is used, so rounding never makes an intensity negative.
+    // each output amplitude is Σₘ cₘ·exp(iφₘ) with real cₘ (interference.hpp).
     const Eigen::Vector2d mode_amplitudes = transfer.entry * incident;
     const double half_phase_sine = std::sin(0.5 * k0_thickness * (transfer.q[0] - transfer.q[1]));
     const double sin2 = half_phase_sine * half_phase_sine;
-    const auto intensity = [&](const Eigen::Vector2d& c) {
-        const double product = c[0] * c[1];
-        return product >= 0.0 ? (c[0] - c[1]) * (c[0] - c[1]) + 4.0 * product * (1.0 - sin2)
-                              : (c[0] + c[1]) * (c[0] + c[1]) - 4.0 * product * sin2;
-    };
+    const auto intensity = [&](const Eigen::Vector2d& c) { return pair_intensity(c[0], c[1], sin2); };
     if (polars_.analyzer_in) {
         const Eigen::Vector2d analyzer(polars_.analyzer.dot(direction.azimuthal), polars_.analyzer.dot(direction.radial));
         return intensity((analyzer.transpose() * transfer.exit).transpose().cwiseProduct(mode_amplitudes));

@@ -1,5 +1,7 @@
 #include "conoscope_kernel.hpp"
 
+#include "interference.hpp"
+
 #include "petroscope/core/fast_math.hpp"
 
 #include <algorithm>
@@ -179,13 +181,6 @@ void solve_modes(const SampleCrystal& crystal, KernelScratch& scratch) {
         const bool converged = std::abs(last_step) <= kConvergedStep * q && q > 0.0;
         failed[i] = static_cast<std::int64_t>(!converged || near_binormal || !std::isfinite(q));
     }
-}
-
-// |c₀e^{iφ₀} + c₁e^{iφ₁}|² in the form whose terms are non-negative (see conoscope_evaluator.cpp).
-inline double pair_intensity(double c0, double c1, double sin2) {
-    const double product = c0 * c1;
-    return product >= 0.0 ? (c0 - c1) * (c0 - c1) + 4.0 * product * (1.0 - sin2)
-                          : (c0 + c1) * (c0 + c1) - 4.0 * product * sin2;
 }
 
 // Single-pass transmission for one side from its forward modes and the other side's (time-reversed:
