@@ -71,7 +71,7 @@ void ConoscopeEvaluator::spectral_pair(const Eigen::Vector2d& xi, KernelScratch&
         scratch.resize(spectral_samples_.padded_size());
         scratch.warm_ready = false;
     }
-    for (std::size_t i = 0; i < spectral_samples_.padded_size(); ++i) set_sample_direction(scratch, i, xi);
+    set_sample_directions(scratch, 0, spectral_samples_.padded_size(), xi);
     const bool warm = continues_row && scratch.warm_ready;
     bool any_failed = run_kernel(spectral_samples_, polars_, scratch, warm);
     // A warm start too far from the roots (coarse pixels): start again from scratch, still vectorised.
@@ -94,7 +94,8 @@ void ConoscopeEvaluator::monochromatic_pairs(const std::vector<Eigen::Vector2d>&
     // A shorter batch uses the first samples; the rest of the arrays repeat its last direction.
     const SampleCrystal& samples = *monochromatic_samples_;
     if (scratch.failed.size() != samples.padded_size()) scratch.resize(samples.padded_size());
-    for (std::size_t i = 0; i < samples.padded_size(); ++i) set_sample_direction(scratch, i, xis[std::min(i, xis.size() - 1)]);
+    for (std::size_t k = 0; k < xis.size(); ++k) set_sample_directions(scratch, k, 1, xis[k]);
+    set_sample_directions(scratch, xis.size(), samples.padded_size() - xis.size(), xis.back());
     const bool any_failed = run_kernel(samples, polars_, scratch, false);
     for (std::size_t k = 0; k < xis.size(); ++k) {
         if (any_failed && scratch.failed[k] != 0) {

@@ -300,14 +300,13 @@ void KernelScratch::resize(std::size_t padded_samples) {
     failed.resize(padded_samples);
 }
 
-void set_sample_direction(KernelScratch& scratch, std::size_t i, const Eigen::Vector2d& xi) {
+void set_sample_directions(KernelScratch& scratch, std::size_t first, std::size_t count, const Eigen::Vector2d& xi) {
     const double length = xi.norm();
-    scratch.xi_x[i] = xi.x();
-    scratch.xi_y[i] = xi.y();
     // ρ̂ = ξ/|ξ|, x̂ at ξ = 0; the opposite side's ρ̂ is −ρ̂, except at ξ = 0 where both use x̂.
-    scratch.rho_x[i] = length > 0.0 ? xi.x() / length : 1.0;
-    scratch.rho_y[i] = length > 0.0 ? xi.y() / length : 0.0;
-    scratch.reversal[i] = length > 0.0 ? -1.0 : 1.0;
+    const double values[5] = {xi.x(), xi.y(), length > 0.0 ? xi.x() / length : 1.0, length > 0.0 ? xi.y() / length : 0.0,
+                              length > 0.0 ? -1.0 : 1.0};
+    std::vector<double>* arrays[5] = {&scratch.xi_x, &scratch.xi_y, &scratch.rho_x, &scratch.rho_y, &scratch.reversal};
+    for (int k = 0; k < 5; ++k) std::fill_n(arrays[k]->begin() + static_cast<std::ptrdiff_t>(first), count, values[k]);
 }
 
 bool run_kernel(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch, bool warm) {
@@ -326,20 +325,31 @@ bool run_kernel(const SampleCrystal& crystal, const PolarizerPair& polars, Kerne
         side_transmission<false, 1>(crystal, polars, scratch);
     }
     // A sample needs all four modes (each side's backward modes are the other side's forward ones).
-    bool any_failed = false;
-    const auto& f = scratch.sheet_failed;
-    for (std::size_t i = 0; i < crystal.size(); ++i) {
-        const bool finite = std::isfinite(scratch.transmission[0][i]) && std::isfinite(scratch.transmission[1][i]);
-        scratch.failed[i] = static_cast<std::int64_t>(f[0][0][i] | f[0][1][i] | f[1][0][i] | f[1][1][i] | !finite);
-        any_failed = any_failed || scratch.failed[i] != 0;
+    const int count = static_cast<int>(crystal.size());
+    const std::int64_t *f00 = scratch.sheet_failed[0][0].data(), *f01 = scratch.sheet_failed[0][1].data();
+    const std::int64_t *f10 = scratch.sheet_failed[1][0].data(), *f11 = scratch.sheet_failed[1][1].data();
+    const double *plus = scratch.transmission[0].data(), *minus = scratch.transmission[1].data();
+    std::int64_t* failed = scratch.failed.data();
+    std::int64_t failures = 0;
+#pragma omp simd reduction(+ : failures)
+    for (int i = 0; i < count; ++i) {
+        const std::int64_t finite = std::isfinite(plus[i]) && std::isfinite(minus[i]) ? 1 : 0;
+        failed[i] = f00[i] | f01[i] | f10[i] | f11[i] | (1 - finite);
+        failures += failed[i];
     }
-    // The next call may start from these roots only if all of them are good.
+    const bool any_failed = failures != 0;
+    // The next run may start from these roots only if all of them are good.
     scratch.warm_ready = !any_failed;
-    for (std::size_t i = 0; i < crystal.padded_size(); ++i) {
-        scratch.previous_xi_x[0][i] = scratch.xi_x[i];
-        scratch.previous_xi_y[0][i] = scratch.xi_y[i];
-        scratch.previous_xi_x[1][i] = -scratch.xi_x[i];
-        scratch.previous_xi_y[1][i] = -scratch.xi_y[i];
+    const int padded = static_cast<int>(crystal.padded_size());
+    double *previous_x0 = scratch.previous_xi_x[0].data(), *previous_y0 = scratch.previous_xi_y[0].data();
+    double *previous_x1 = scratch.previous_xi_x[1].data(), *previous_y1 = scratch.previous_xi_y[1].data();
+    const double *xi_x = scratch.xi_x.data(), *xi_y = scratch.xi_y.data();
+#pragma omp simd
+    for (int i = 0; i < padded; ++i) {
+        previous_x0[i] = xi_x[i];
+        previous_y0[i] = xi_y[i];
+        previous_x1[i] = -xi_x[i];
+        previous_y1[i] = -xi_y[i];
     }
     return any_failed;
 }

@@ -62,8 +62,8 @@ struct KernelScratch {
     bool warm_ready = false;           // the last run's roots can start the next run's iterations
 };
 
-/// Sets the geometry of sample i to the pair (ξ, −ξ).
-void set_sample_direction(KernelScratch& scratch, std::size_t i, const Eigen::Vector2d& xi);
+/// Sets the geometry of samples first … first + count − 1 to the pair (ξ, −ξ).
+void set_sample_directions(KernelScratch& scratch, std::size_t first, std::size_t count, const Eigen::Vector2d& xi);
 
 /// Transmission of every sample into scratch.transmission[side]. With `warm` (allowed when
 /// scratch.warm_ready), each sample's Newton iterations start from the previous run's roots moved along
