@@ -47,5 +47,6 @@ std::string joined_command_line(int argc, char** argv);
 
 void add_minerals_command(CLI::App& app, std::string& minerals_dir);
 void add_conoscope_command(CLI::App& app, const std::string& minerals_dir, const std::string& command_line);
+void add_interface_command(CLI::App& app, const std::string& minerals_dir);
 
 }  // namespace petroscope::cli

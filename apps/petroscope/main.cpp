@@ -17,7 +17,8 @@ int main(int argc, char** argv) {
         "  petroscope conoscope -o figure.png                       (muscovite, acute bisectrix, white light)\n"
         "  petroscope conoscope --mineral calcite --thickness 30um --wavelength 589nm -o calcite.png\n"
         "  petroscope minerals                                       (list the minerals)\n"
-        "  petroscope minerals show quartz --wavelength 589nm --json"};
+        "  petroscope minerals show quartz --wavelength 589nm --json\n"
+        "  petroscope interface --case verification/cases/brewster-p.json"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "petroscope 0.1.0");
     std::string minerals_dir;
@@ -25,6 +26,7 @@ int main(int argc, char** argv) {
     const std::string command_line = petroscope::cli::joined_command_line(argc, argv);
     petroscope::cli::add_minerals_command(app, minerals_dir);
     petroscope::cli::add_conoscope_command(app, minerals_dir, command_line);
+    petroscope::cli::add_interface_command(app, minerals_dir);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

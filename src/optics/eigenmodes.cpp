@@ -8,15 +8,18 @@ namespace petroscope {
 namespace {
 
 // Unit projection of `v` on the plane ⟂ k̂, or zero when `v` ∥ k̂.
-Eigen::Vector3d unit_transverse(const Eigen::Vector3d& v, const Eigen::Vector3d& k_hat) {
-    const Eigen::Vector3d transverse = v - v.dot(k_hat) * k_hat;
-    const double length = transverse.norm();
-    return length > 0.0 ? Eigen::Vector3d(transverse / length) : Eigen::Vector3d::Zero();
+template <typename Real>
+Eigen::Matrix<Real, 3, 1> unit_transverse(const Eigen::Matrix<Real, 3, 1>& v, const Eigen::Matrix<Real, 3, 1>& k_hat) {
+    const Eigen::Matrix<Real, 3, 1> transverse = v - v.dot(k_hat) * k_hat;
+    const Real length = transverse.norm();
+    return length > Real(0) ? Eigen::Matrix<Real, 3, 1>(transverse / length) : Eigen::Matrix<Real, 3, 1>::Zero();
 }
 
 // Any unit vector ⟂ k̂.
-Eigen::Vector3d any_perpendicular(const Eigen::Vector3d& k_hat) {
-    const Eigen::Vector3d helper = std::abs(k_hat.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+template <typename Real>
+Eigen::Matrix<Real, 3, 1> any_perpendicular(const Eigen::Matrix<Real, 3, 1>& k_hat) {
+    using Vector = Eigen::Matrix<Real, 3, 1>;
+    const Vector helper = std::abs(k_hat.x()) < Real(0.9) ? Vector::UnitX() : Vector::UnitY();
     return k_hat.cross(helper).normalized();
 }
 
@@ -46,26 +49,32 @@ Eigen::Vector2d inverse_squared_indices(const BinormalFrame& frame, const Eigen:
     return {m + delta, m - delta};
 }
 
-std::pair<Eigen::Vector3d, Eigen::Vector3d> vibration_directions(const BinormalFrame& frame,
-                                                                 const Eigen::Vector3d& k_hat) {
-    const Eigen::Vector3d p1 = unit_transverse(frame.binormal_1, k_hat);
-    const Eigen::Vector3d p2 = unit_transverse(frame.binormal_2, k_hat);
-    const Eigen::Vector3d sum = p1 + p2;       // ∥ D_slow
-    const Eigen::Vector3d difference = p1 - p2;  // ∥ D_fast
-    const double sum_norm = sum.norm();
-    const double difference_norm = difference.norm();
-    if (sum_norm == 0.0 && difference_norm == 0.0) {
+template <typename Real>
+std::pair<Eigen::Matrix<Real, 3, 1>, Eigen::Matrix<Real, 3, 1>> vibration_directions(const BasicBinormalFrame<Real>& frame,
+                                                                                     const Eigen::Matrix<Real, 3, 1>& k_hat) {
+    using Vector = Eigen::Matrix<Real, 3, 1>;
+    const Vector p1 = unit_transverse(frame.binormal_1, k_hat);
+    const Vector p2 = unit_transverse(frame.binormal_2, k_hat);
+    const Vector sum = p1 + p2;         // ∥ D_slow
+    const Vector difference = p1 - p2;  // ∥ D_fast
+    const Real sum_norm = sum.norm();
+    const Real difference_norm = difference.norm();
+    if (sum_norm == Real(0) && difference_norm == Real(0)) {
         // On the binormal of a uniaxial (or in an isotropic) crystal: every direction is an eigenmode.
-        const Eigen::Vector3d first = any_perpendicular(k_hat);
+        const Vector first = any_perpendicular(k_hat);
         return {first, k_hat.cross(first)};
     }
     if (sum_norm >= difference_norm) {
-        const Eigen::Vector3d slow = sum / sum_norm;
+        const Vector slow = sum / sum_norm;
         return {k_hat.cross(slow), slow};
     }
-    const Eigen::Vector3d fast = difference / difference_norm;
+    const Vector fast = difference / difference_norm;
     return {fast, k_hat.cross(fast)};
 }
+
+template std::pair<Eigen::Vector3d, Eigen::Vector3d> vibration_directions(const BinormalFrame&, const Eigen::Vector3d&);
+template std::pair<Eigen::Matrix<long double, 3, 1>, Eigen::Matrix<long double, 3, 1>> vibration_directions(
+    const BasicBinormalFrame<long double>&, const Eigen::Matrix<long double, 3, 1>&);
 
 ModePair eigenmodes(const BinormalFrame& frame, const Eigen::Vector3d& k_hat) {
     const Eigen::Vector2d inverse_n2 = inverse_squared_indices(frame, k_hat);

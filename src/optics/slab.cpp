@@ -16,31 +16,67 @@ namespace {
 // A = (a + c)/2, B = (a − c)/2, σ = +1 fast, −1 slow: the Biot–Fresnel form of eigenmodes.hpp
 // multiplied by |N|² (|N|²c₁c₂ = (N·b₁)(N·b₂), |N|²s₁s₂ = |N × b₁||N × b₂|), so that its roots are
 // the k_z/k₀ of the modes on that sheet.
+template <typename Real>
 struct SheetEquation {
-    double a_half_sum, b_half_difference, sigma;
-    double xi2;          // |ξ|²
-    double u1, u2;       // ξ·b₁, ξ·b₂ (tangential parts)
-    double b1z, b2z;     // z components of the binormals
+    Real a_half_sum, b_half_difference, sigma;
+    Real xi2;          // |ξ|²
+    Real u1, u2;       // ξ·b₁, ξ·b₂ (tangential parts)
+    Real b1z, b2z;     // z components of the binormals
 
-    double value(double q, double* derivative) const {
-        const double n2 = xi2 + q * q;
-        const double nb1 = u1 + q * b1z;
-        const double nb2 = u2 + q * b2z;
-        const double p1 = std::max(n2 - nb1 * nb1, 0.0);  // |N × b₁|²
-        const double p2 = std::max(n2 - nb2 * nb2, 0.0);
-        const double root = std::sqrt(p1 * p2);
-        const double g = a_half_sum * n2 + b_half_difference * (nb1 * nb2 + sigma * root) - 1.0;
-        const double dp1 = 2.0 * (q - nb1 * b1z);
-        const double dp2 = 2.0 * (q - nb2 * b2z);
-        const double droot = root > 0.0 ? 0.5 * (dp1 * p2 + p1 * dp2) / root : 0.0;
-        *derivative = 2.0 * a_half_sum * q + b_half_difference * (b1z * nb2 + b2z * nb1 + sigma * droot);
+    Real value(Real q, Real* derivative) const {
+        using std::max, std::sqrt;
+        const Real n2 = xi2 + q * q;
+        const Real nb1 = u1 + q * b1z;
+        const Real nb2 = u2 + q * b2z;
+        const Real p1 = max(n2 - nb1 * nb1, Real(0));  // |N × b₁|²
+        const Real p2 = max(n2 - nb2 * nb2, Real(0));
+        const Real root = sqrt(p1 * p2);
+        const Real g = a_half_sum * n2 + b_half_difference * (nb1 * nb2 + sigma * root) - Real(1);
+        const Real dp1 = Real(2) * (q - nb1 * b1z);
+        const Real dp2 = Real(2) * (q - nb2 * b2z);
+        const Real droot = root > Real(0) ? Real(0.5) * (dp1 * p2 + p1 * dp2) / root : Real(0);
+        *derivative = Real(2) * a_half_sum * q + b_half_difference * (b1z * nb2 + b2z * nb1 + sigma * droot);
         return g;
+    }
+
+    template <typename Other>
+    SheetEquation<Other> as() const {
+        return {Other(a_half_sum), Other(b_half_difference), Other(sigma), Other(xi2), Other(u1), Other(u2), Other(b1z), Other(b2z)};
     }
 };
 
+// The sheet equation of `frame` for sheet 0 (fast) or 1 (slow) at tangential wavevector ξ.
+template <typename Real>
+SheetEquation<Real> sheet_equation(const BasicBinormalFrame<Real>& frame, const Eigen::Vector2d& xi, int sheet) {
+    const Real xi_x = xi.x(), xi_y = xi.y();
+    return {Real(0.5) * (frame.a + frame.c),
+            Real(0.5) * (frame.a - frame.c),
+            sheet == 0 ? Real(1) : Real(-1),
+            xi_x * xi_x + xi_y * xi_y,
+            xi_x * frame.binormal_1.x() + xi_y * frame.binormal_1.y(),
+            xi_x * frame.binormal_2.x() + xi_y * frame.binormal_2.y(),
+            frame.binormal_1.z(),
+            frame.binormal_2.z()};
+}
+
+// Two Newton steps in extended precision. Near grazing incidence g'(q) ∝ q → 0, and evaluating g in double
+// leaves q off by about ε/g'; with the root exact to its last bit the mode fields solve the wave equation
+// to rounding, and the fluxes at an interface balance (R + T = 1).
+double polish(const SheetEquation<double>& equation, double q) {
+    const SheetEquation<long double> extended = equation.as<long double>();
+    long double root = q;
+    for (int step = 0; step < 2; ++step) {
+        long double derivative = 0.0L;
+        const long double value = extended.value(root, &derivative);
+        if (derivative == 0.0L || !std::isfinite(static_cast<double>(value / derivative))) break;
+        root -= value / derivative;
+    }
+    return static_cast<double>(root);
+}
+
 // Root of the sheet equation between `end_a` (where g < 0: q = 0) and `end_b` (where g > 0), by Newton's
 // method kept inside the shrinking bracket; bisection whenever a Newton step would leave it.
-double solve_bracketed(const SheetEquation& equation, double end_a, double end_b, double guess) {
+double solve_bracketed(const SheetEquation<double>& equation, double end_a, double end_b, double guess) {
     double negative_end = end_a;
     double positive_end = end_b;
     double q = (std::isfinite(guess) && (guess - end_a) * (guess - end_b) < 0.0) ? guess : 0.5 * (end_a + end_b);
@@ -64,7 +100,7 @@ double solve_bracketed(const SheetEquation& equation, double end_a, double end_b
 // Uniaxial crystal (b₂ = ±b₁ = ±b): |N × b₁||N × b₂| = |N|² − (N·b)², so g_σ is the quadratic
 // αq² + βq + γ; its larger root is the forward mode (the caller has checked that g(0) < 0, so the roots
 // are real and of opposite signs).
-double forward_quadratic_root(const SheetEquation& e, double orientation_sign) {
+double forward_quadratic_root(const SheetEquation<double>& e, double orientation_sign) {
     const double level = e.a_half_sum + e.sigma * e.b_half_difference;
     const double cross = e.b_half_difference * (orientation_sign - e.sigma);
     const double alpha = level + cross * e.b1z * e.b1z;
@@ -130,21 +166,60 @@ bool solve_forward_modes(const BinormalFrame& frame, const Eigen::Vector2d& xi, 
                          std::array<SlabMode, 2>& modes) {
     const double n_max = 1.0 / std::sqrt(frame.c);
     for (int sheet = 0; sheet < 2; ++sheet) {
-        const SheetEquation equation{0.5 * (frame.a + frame.c),
-                                     0.5 * (frame.a - frame.c),
-                                     sheet == 0 ? 1.0 : -1.0,
-                                     xi.squaredNorm(),
-                                     xi.dot(frame.binormal_1.head<2>()),
-                                     xi.dot(frame.binormal_2.head<2>()),
-                                     frame.binormal_1.z(),
-                                     frame.binormal_2.z()};
+        const SheetEquation<double> equation = sheet_equation(frame, xi, sheet);
         double derivative = 0.0;
         // |ξ| reaches the sheet's index: no propagating mode on this sheet.
         if (equation.value(0.0, &derivative) >= 0.0) return false;
-        const double q = frame.uniaxial()
-                             ? forward_quadratic_root(equation, frame.binormal_1.dot(frame.binormal_2))
-                             : solve_bracketed(equation, 0.0, 2.0 * n_max, guess[sheet]);  // g(2 n_max) > 0
+        const double q = polish(equation, frame.uniaxial() ? forward_quadratic_root(equation, frame.binormal_1.dot(frame.binormal_2))
+                                                           : solve_bracketed(equation, 0.0, 2.0 * n_max, guess[sheet]));  // g(2 n_max) > 0
         modes[sheet] = make_mode(frame, xi, q, sheet);
+    }
+    return true;
+}
+
+bool solve_sheet_modes_extended(const BasicBinormalFrame<long double>& frame, const Eigen::Vector2d& xi,
+                                std::array<ExtendedSlabMode, 4>& modes) {
+    using Vector = Eigen::Matrix<long double, 3, 1>;
+    const long double n_max = 1.0L / std::sqrt(frame.c);
+    for (int sheet = 0; sheet < 2; ++sheet) {
+        const SheetEquation<long double> equation = sheet_equation(frame, xi, sheet);
+        const SheetEquation<double> rounded = equation.as<double>();
+        const auto g = [&](long double q) {
+            long double unused = 0.0L;
+            return equation.value(q, &unused);
+        };
+        // The interval of q inside the sheet: around the minimum of g on [−2n_max, 2n_max] (golden-section
+        // search, Press et al., Numerical Recipes §10.2; the sheet is star-shaped about the origin, so g is
+        // unimodal along the line).
+        const long double golden = 0.5L * (std::sqrt(5.0L) - 1.0L);
+        long double low = -2.0L * n_max, high = 2.0L * n_max;
+        long double left = high - golden * (high - low), right = low + golden * (high - low);
+        long double g_left = g(left), g_right = g(right);
+        for (int iteration = 0; iteration < 100 && high - low > 1e-12L; ++iteration) {
+            if (g_left < g_right) {
+                high = right; right = left; g_right = g_left;
+                left = high - golden * (high - low); g_left = g(left);
+            } else {
+                low = left; left = right; g_left = g_right;
+                right = low + golden * (high - low); g_right = g(right);
+            }
+        }
+        const long double inside = 0.5L * (low + high);
+        if (!(g(inside) < 0.0L)) return false;  // the line misses the sheet: evanescent modes
+        for (int end = 0; end < 2; ++end) {
+            // A root between the inside point and ±2 n_max, then Newton in long double.
+            const double outside = end == 0 ? static_cast<double>(2.0L * n_max) : static_cast<double>(-2.0L * n_max);
+            long double q = solve_bracketed(rounded, static_cast<double>(inside), outside, std::numeric_limits<double>::quiet_NaN());
+            for (int step = 0; step < 3; ++step) {
+                long double slope = 0.0L;
+                const long double value = equation.value(q, &slope);
+                if (slope == 0.0L) break;
+                q -= value / slope;
+            }
+            const Vector n_vector(xi.x(), xi.y(), q);
+            const auto [d_fast, d_slow] = vibration_directions(frame, Vector(n_vector.normalized()));
+            modes[static_cast<std::size_t>(2 * sheet + end)] = {q, frame.impermeability * (sheet == 0 ? d_fast : d_slow)};
+        }
     }
     return true;
 }

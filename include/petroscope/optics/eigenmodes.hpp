@@ -28,8 +28,9 @@ Eigen::Vector2d inverse_squared_indices(const BinormalFrame& frame, const Eigen:
 /// binormals on the plane ⟂ k̂ (physics notes §2); the longer of the two sums is normalised and the other
 /// direction is k̂ × it. Exactly on a binormal any orthonormal pair is returned (the modes are
 /// degenerate there). Returns (D̂_fast, D̂_slow).
-std::pair<Eigen::Vector3d, Eigen::Vector3d> vibration_directions(const BinormalFrame& frame,
-                                                                 const Eigen::Vector3d& k_hat);
+template <typename Real>
+std::pair<Eigen::Matrix<Real, 3, 1>, Eigen::Matrix<Real, 3, 1>> vibration_directions(const BasicBinormalFrame<Real>& frame,
+                                                                                     const Eigen::Matrix<Real, 3, 1>& k_hat);
 
 /// Both eigenmodes for the unit wave normal `k_hat`.
 ModePair eigenmodes(const BinormalFrame& frame, const Eigen::Vector3d& k_hat);

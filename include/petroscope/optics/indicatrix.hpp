@@ -18,20 +18,29 @@ struct Indicatrix {
 /// What the Biot–Fresnel construction needs (physics notes §2): the sorted principal impermeabilities
 /// a ≥ b ≥ c (a = 1/n_min², c = 1/n_max²) and the two binormals (optic axes of the wave normals),
 /// b₁,₂ = cos V·e_c ± sin V·e_a, both with a non-negative component along e_c, tan²V = (a − b)/(b − c).
-/// A uniaxial crystal has b₁ = ±b₂ (V = 0 or 90°), an isotropic one a = c.
-struct BinormalFrame {
-    double a = 1.0, b = 1.0, c = 1.0;
-    Eigen::Vector3d e_a = Eigen::Vector3d::UnitX();  // axis of the smallest index
-    Eigen::Vector3d e_c = Eigen::Vector3d::UnitZ();  // axis of the largest index
-    Eigen::Vector3d binormal_1 = Eigen::Vector3d::UnitZ();
-    Eigen::Vector3d binormal_2 = Eigen::Vector3d::UnitZ();
-    double v_rad = 0.0;  // angle of each binormal from e_c
-    Eigen::Matrix3d impermeability = Eigen::Matrix3d::Identity();
+/// A uniaxial crystal has b₁ = ±b₂ (V = 0 or 90°), an isotropic one a = c. `Real` is double, or long double
+/// where an interface must balance its fluxes far below double precision (optics/interface.hpp).
+template <typename Real>
+struct BasicBinormalFrame {
+    using Vector = Eigen::Matrix<Real, 3, 1>;
+    using Matrix = Eigen::Matrix<Real, 3, 3>;
+    Real a = 1, b = 1, c = 1;
+    Vector e_a = Vector::UnitX();  // axis of the smallest index
+    Vector e_c = Vector::UnitZ();  // axis of the largest index
+    Vector binormal_1 = Vector::UnitZ();
+    Vector binormal_2 = Vector::UnitZ();
+    Real v_rad = 0;  // angle of each binormal from e_c
+    Matrix impermeability = Matrix::Identity();  // η in the lab frame, exactly symmetric
 
-    explicit BinormalFrame(const Indicatrix& indicatrix);
+    /// Computed in `Real` from the indicatrix's (double) indices and axes.
+    explicit BasicBinormalFrame(const Indicatrix& indicatrix);
+    BasicBinormalFrame() = default;
     /// b₁ = ±b₂ exactly: a uniaxial or isotropic crystal.
     bool uniaxial() const { return a == b || b == c; }
-    BinormalFrame() = default;
 };
+
+using BinormalFrame = BasicBinormalFrame<double>;
+extern template struct BasicBinormalFrame<double>;
+extern template struct BasicBinormalFrame<long double>;
 
 }  // namespace petroscope

@@ -1,0 +1,65 @@
+#pragma once
+// The exact local model of a plane wave meeting a plane interface between two homogeneous media
+// (isotropic or anisotropic, lossless or absorbing): every reflected and transmitted wave with its
+// direction, ray, index, amplitude, power and polarization. Conventions: docs/interface.md.
+#include "petroscope/optics/medium.hpp"
+#include "petroscope/optics/polarization.hpp"
+
+#include <Eigen/Core>
+
+#include <complex>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace petroscope {
+
+struct InterfaceIncidence {
+    /// Wave normal in medium 1 (lab frame); its component along the interface normal must be positive.
+    Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();
+    /// Isotropic medium 1: the state in the incident wave's (s, p) basis (trace normalised by the solver).
+    CoherencyMatrix coherency = CoherencyMatrix::Identity() * 0.5;
+    /// Isotropic medium 1, fully polarized light: the Jones vector, so that output amplitudes are reported.
+    std::optional<JonesVector> jones;
+    /// Anisotropic medium 1: which eigenmode is incident: "fast", "slow", or for a uniaxial medium
+    /// "ordinary", "extraordinary".
+    std::string mode;
+};
+
+struct InterfaceWave {
+    enum class Kind { reflected, transmitted };
+    Kind kind = Kind::reflected;
+    /// "s+p" for the one wave of an isotropic medium; "ordinary"/"extraordinary" (uniaxial) or
+    /// "fast"/"slow" (biaxial) for the eigenmodes of an anisotropic one.
+    std::string mode;
+    Eigen::Vector3d direction = Eigen::Vector3d::Zero();      // unit wave normal (Re N), lab frame
+    Eigen::Vector3d ray_direction = Eigen::Vector3d::Zero();  // unit time-averaged Poynting vector
+    std::complex<double> n = 1.0;                             // √(N·N), N = k/k₀
+    /// Normal component of the Poynting flux relative to the incident one (0 for evanescent waves).
+    double power = 0.0;
+    /// Of the transverse E field in the wave's (s, p) basis, scaled so that S0 = power.
+    Eigen::Vector4d stokes = Eigen::Vector4d::Zero();
+    /// Fully polarized incidence on an isotropic medium 1, isotropic wave: (E_s, E_p) for the unit
+    /// incident Jones vector (so r_s, r_p, t_s, t_p for s and p incidence).
+    std::optional<JonesVector> jones;
+    /// Fully polarized incidence, anisotropic mode: its complex amplitude relative to the mode's unit E
+    /// field (phase: the largest component of the field is real and positive); `e_field` is that field.
+    std::optional<std::complex<double>> amplitude;
+    Eigen::Vector3cd e_field = Eigen::Vector3cd::Zero();
+    bool evanescent = false;
+};
+
+struct InterfaceResult {
+    std::vector<InterfaceWave> waves;  // reflected first, then transmitted; within each, by increasing Re n
+    std::complex<double> incident_n = 1.0;
+    Eigen::Vector3d incident_ray_direction = Eigen::Vector3d::Zero();
+};
+
+/// Solves the boundary conditions (continuous tangential E and H, Born & Wolf §1.1.3) for the plane wave
+/// `incidence` going from medium 1 into medium 2 across the plane with unit normal `normal` (pointing from
+/// medium 1 into medium 2). Medium 1 must be lossless (the incident wave is homogeneous). Throws
+/// InputError for zero or non-finite vectors, an incident direction not toward medium 2, an unknown mode.
+InterfaceResult solve_interface(const Eigen::Vector3d& normal, const InterfaceIncidence& incidence, const OpticalMedium& medium1,
+                                const OpticalMedium& medium2);
+
+}  // namespace petroscope

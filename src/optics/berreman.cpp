@@ -1,0 +1,464 @@
+// GCC 12 reports -Wmaybe-uninitialized inside its own AVX-512 intrinsics when Eigen's complex-matrix code is
+// inlined (GCC bug 105593, as for interface.cpp in CMakeLists.txt); the state must hold where Eigen is included.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#endif
+
+#include "petroscope/optics/berreman.hpp"
+
+#include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <utility>
+
+namespace petroscope {
+namespace {
+
+using Complex = std::complex<double>;
+using Matrix42cd = Eigen::Matrix<Complex, 4, 2>;
+
+// ε ∝ identity within this fraction of |ε|: built in closed form (s and p).
+constexpr double kIsotropicTolerance = 1e-12;
+// ε Hermitian within this fraction of |ε|: lossless (rotated real tensors are symmetric only to rounding).
+constexpr double kHermitianTolerance = 1e-13;
+// |Im q| above this fraction of 1 + |q|: the amplitude varies along z (eigenvalue noise is ~1e-15·|Δ|).
+constexpr double kEvanescentTolerance = 1e-10;
+// Two q of a pair closer than this fraction of 1 + |q|: degenerate. Near √ε_machine it balances the error of
+// the eigenvectors of a nearly degenerate pair (ε_machine/gap) against that of treating it as exact (gap).
+constexpr double kDegenerateTolerance = 1e-8;
+
+double max_abs(const Eigen::Matrix3cd& m) { return m.cwiseAbs().maxCoeff(); }
+
+bool amplitude_varies(Complex q) { return std::abs(q.imag()) > kEvanescentTolerance * (1.0 + std::abs(q)); }
+
+// Time-averaged z flux of a tangential field, S_z = ½ Re(E × H*)_z = ½ Re(ψ₁ψ₂* + ψ₃ψ₄*) (Berreman 1972;
+// physics notes §3). The same in the lab and plane-of-incidence frames (a rotation about z).
+double flux_of(const Eigen::Vector4cd& psi) {
+    return 0.5 * (psi[0] * std::conj(psi[1]) + psi[2] * std::conj(psi[3])).real();
+}
+
+// The Hermitian form of that flux: S_z(ψ) = ψᴴ J ψ, so the cross flux of two waves is Re(aᴴ J b)·2.
+Eigen::Matrix2cd flux_form(const Matrix42cd& basis) {
+    Eigen::Matrix4cd j = Eigen::Matrix4cd::Zero();
+    j(0, 1) = j(1, 0) = j(2, 3) = j(3, 2) = 0.25;
+    return basis.adjoint() * j * basis;
+}
+
+// The plane of incidence: ρ̂ = ξ/|ξ| (x̂ at ξ = 0), ŝ = ẑ × ρ̂. The frame (ρ̂, ŝ, ẑ) is the lab frame turned
+// about z by atan2(ξ_y, ξ_x); Berreman's Δ for the x–z plane of incidence applies there.
+struct PlaneOfIncidence {
+    double xi = 0.0;  // |ξ|
+    double cos_phi = 1.0, sin_phi = 0.0;
+    Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // columns ρ̂, ŝ, ẑ in the lab frame
+
+    explicit PlaneOfIncidence(const Eigen::Vector2d& xi_lab) : xi(xi_lab.norm()) {
+        if (xi > 0.0) {
+            cos_phi = xi_lab.x() / xi;
+            sin_phi = xi_lab.y() / xi;
+        }
+        rotation << cos_phi, -sin_phi, 0.0, sin_phi, cos_phi, 0.0, 0.0, 0.0, 1.0;
+    }
+
+    // (E_x, E_y) and (H_y, −H_x) = (H × ẑ)_{x,y} both turn as plane vectors about z.
+    Eigen::Vector4cd to_lab(const Eigen::Vector4cd& p) const {
+        return {cos_phi * p[0] - sin_phi * p[2], cos_phi * p[1] - sin_phi * p[3], sin_phi * p[0] + cos_phi * p[2],
+                sin_phi * p[1] + cos_phi * p[3]};
+    }
+    Eigen::Vector4cd to_plane(const Eigen::Vector4cd& p) const {
+        return {cos_phi * p[0] + sin_phi * p[2], cos_phi * p[1] + sin_phi * p[3], -sin_phi * p[0] + cos_phi * p[2],
+                -sin_phi * p[1] + cos_phi * p[3]};
+    }
+};
+
+// A homogeneous medium seen in the plane-of-incidence frame.
+struct Medium {
+    Eigen::Matrix3cd epsilon;  // ε' = Rᵀ ε R, R = (ρ̂, ŝ, ẑ)
+    double xi = 0.0;
+    bool isotropic = false;
+    bool lossless = false;
+    Complex isotropic_epsilon;  // ε̄ = tr ε / 3
+
+    Medium(const Eigen::Matrix3cd& epsilon_lab, const PlaneOfIncidence& plane) : xi(plane.xi) {
+        const Eigen::Matrix3cd r = plane.rotation.cast<Complex>();
+        epsilon = r.transpose() * epsilon_lab * r;
+        const double scale = max_abs(epsilon_lab);
+        isotropic_epsilon = epsilon_lab.trace() / 3.0;
+        isotropic =
+            max_abs(epsilon_lab - isotropic_epsilon * Eigen::Matrix3cd::Identity()) <= kIsotropicTolerance * scale;
+        lossless = max_abs(epsilon_lab - epsilon_lab.adjoint()) <= kHermitianTolerance * scale;
+    }
+};
+
+// Berreman's Δ for the x–z plane of incidence, dψ/dz = i k₀ Δ ψ, ψ = (E_x, H_y, E_y, −H_x) (Berreman,
+// JOSA 62, 502 (1972), with μ = 1 and no optical activity; physics notes §3). Derived from
+// ∇ × E = i k₀ H, ∇ × H = −i k₀ ε E with ∂/∂x = i k₀ ξ, ∂/∂y = 0, eliminating E_z and H_z.
+Eigen::Matrix4cd delta_matrix(const Eigen::Matrix3cd& e, double xi) {
+    const Complex e33 = e(2, 2);
+    Eigen::Matrix4cd delta = Eigen::Matrix4cd::Zero();
+    delta(0, 0) = -xi * e(2, 0) / e33;
+    delta(0, 1) = 1.0 - xi * xi / e33;
+    delta(0, 2) = -xi * e(2, 1) / e33;
+    delta(1, 0) = e(0, 0) - e(0, 2) * e(2, 0) / e33;
+    delta(1, 1) = -xi * e(0, 2) / e33;
+    delta(1, 2) = e(0, 1) - e(0, 2) * e(2, 1) / e33;
+    delta(2, 3) = 1.0;
+    delta(3, 0) = e(1, 0) - e(1, 2) * e(2, 0) / e33;
+    delta(3, 1) = -xi * e(1, 2) / e33;
+    delta(3, 2) = e(1, 1) - e(1, 2) * e(2, 1) / e33 - xi * xi;
+    return delta;
+}
+
+// The full fields of a tangential field ψ' (plane frame): E_z = −(ξ H_y + ε₃₁E_x + ε₃₂E_y)/ε₃₃ from
+// (∇ × H)_z = −i k₀ (εE)_z, and H_z = ξ E_y from (∇ × E)_z = i k₀ H_z (the eliminations of Berreman 1972).
+std::pair<Eigen::Vector3cd, Eigen::Vector3cd> fields_from_psi(const Medium& medium, const Eigen::Vector4cd& psi) {
+    const Eigen::Matrix3cd& e = medium.epsilon;
+    const Complex ez = -(medium.xi * psi[1] + e(2, 0) * psi[0] + e(2, 1) * psi[2]) / e(2, 2);
+    return {Eigen::Vector3cd(psi[0], psi[2], ez), Eigen::Vector3cd(-psi[3], psi[1], medium.xi * psi[2])};
+}
+
+// Two waves of one direction (forward or backward), as an invariant subspace of Δ: Δ·basis = basis·generator.
+// For a layer only the subspace matters (its propagator is exp(i k₀ d generator)), which stays exact when the
+// two waves are degenerate or nearly so; the individual modes are the generator's eigenvectors.
+struct WavePair {
+    Matrix42cd basis;
+    Eigen::Matrix2cd generator;
+};
+
+struct Spectrum {
+    WavePair forward, backward;
+};
+
+// Isotropic medium, ε = n² I (Born & Wolf, Principles of Optics, §1.5): q = ±√(n² − ξ²), the forward root
+// decaying toward +z or, when real, positive. s: E = ŝ, H = N × E, ψ' = (0, 0, 1, ±q). p: E = ±(q ρ̂ − ξ ẑ)/n
+// (transverse part along +ρ̂), H = N × E = ±n ŝ, ψ' = (q/n, ±n, 0, 0) with q the forward root.
+// `inside_stack`: a layer at grazing incidence (q = 0) is an exceptional point of Δ where the forward and backward
+// waves coincide and the mode basis is singular, although the layer's transfer matrix (a function of q², entire)
+// is not. There |q| is raised to kGrazingQ, which moves q² by at most kGrazingQ² = 1e-12.
+constexpr double kGrazingQ = 1e-6;
+Spectrum isotropic_spectrum(const Medium& medium, bool inside_stack) {
+    Complex q = std::sqrt(medium.isotropic_epsilon - medium.xi * medium.xi);
+    if (amplitude_varies(q) ? q.imag() < 0.0 : q.real() < 0.0) q = -q;
+    if (medium.lossless && !amplitude_varies(q)) q = q.real();
+    if (medium.lossless && amplitude_varies(q)) q = Complex(0.0, q.imag());  // real ε̄ − ξ² < 0: q = i√(ξ² − ε̄)
+    if (inside_stack && std::abs(q) < kGrazingQ) q = q == 0.0 ? Complex(kGrazingQ) : kGrazingQ * q / std::abs(q);
+    const Complex n = std::sqrt(medium.isotropic_epsilon);
+    Spectrum spectrum;
+    spectrum.forward.basis << 0.0, q / n, 0.0, n, 1.0, 0.0, q, 0.0;
+    spectrum.backward.basis << 0.0, q / n, 0.0, -n, 1.0, 0.0, -q, 0.0;
+    spectrum.forward.generator = q * Eigen::Matrix2cd::Identity();
+    spectrum.backward.generator = -q * Eigen::Matrix2cd::Identity();
+    return spectrum;
+}
+
+// Orthonormal basis of the null space of `m` known to have rank 2: its two right singular vectors of least
+// singular value.
+Matrix42cd null_space_2(const Eigen::Matrix4cd& m) {
+    const Eigen::JacobiSVD<Eigen::Matrix4cd> svd(m, Eigen::ComputeFullV);
+    return svd.matrixV().rightCols<2>();
+}
+
+// Anisotropic medium: the eigenvalues of Δ (Schur decomposition), each classified forward or backward with
+// its own eigenvector (flux sign) or the sign of Im q; then the forward subspace as the null space of
+// (Δ − q_f1)(Δ − q_f2) — the generalised eigenspace of the pair, by Cayley–Hamilton the range of
+// (Δ − q_b1)(Δ − q_b2) — and the backward one likewise.
+// This subspace is well conditioned even when the two forward waves are degenerate (optic axis) where the
+// individual eigenvectors are not; it fails only where a forward and a backward wave meet (q → 0 at grazing
+// incidence, an exceptional point of Δ).
+Spectrum anisotropic_spectrum(const Medium& medium) {
+    const Eigen::Matrix4cd delta = delta_matrix(medium.epsilon, medium.xi);
+    const Eigen::ComplexEigenSolver<Eigen::Matrix4cd> solver(delta, false);
+    std::array<Complex, 4> q;
+    std::array<double, 4> forwardness;  // > 0 forward: Im q when the amplitude varies, else the flux
+    for (int i = 0; i < 4; ++i) {
+        q[i] = solver.eigenvalues()[i];
+        // A Hermitian ε gives real q or complex-conjugate pairs (Δ is then J-self-adjoint): snap rounding noise.
+        if (medium.lossless && !amplitude_varies(q[i])) q[i] = q[i].real();
+        if (amplitude_varies(q[i])) {
+            forwardness[i] = q[i].imag();
+        } else {
+            const Eigen::JacobiSVD<Eigen::Matrix4cd> svd(delta - q[i] * Eigen::Matrix4cd::Identity(),
+                                                         Eigen::ComputeFullV);
+            forwardness[i] = flux_of(svd.matrixV().col(3));
+        }
+    }
+    std::array<int, 4> order{0, 1, 2, 3};
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return forwardness[a] > forwardness[b]; });
+    const Eigen::Matrix4cd identity = Eigen::Matrix4cd::Identity();
+    const auto subspace = [&](int first, int second) {
+        WavePair pair;
+        pair.basis = null_space_2((delta - q[first] * identity) * (delta - q[second] * identity));
+        pair.generator = pair.basis.adjoint() * delta * pair.basis;
+        return pair;
+    };
+    return Spectrum{subspace(order[0], order[1]), subspace(order[2], order[3])};
+}
+
+Spectrum medium_spectrum(const Medium& medium, bool inside_stack = false) {
+    return medium.isotropic ? isotropic_spectrum(medium, inside_stack) : anisotropic_spectrum(medium);
+}
+
+// A mode with its tangential field in the plane frame (what the boundary conditions use).
+struct PlaneMode {
+    BerremanMode mode;
+    Eigen::Vector4cd psi_plane;
+};
+
+PlaneMode complete_mode(const Medium& medium, const PlaneOfIncidence& plane, Complex q, Eigen::Vector4cd psi,
+                        bool forward) {
+    if (medium.lossless && !amplitude_varies(q)) q = q.real();
+    auto [e, h] = fields_from_psi(medium, psi);
+    if (!medium.isotropic) {
+        // |E| = 1, the larger of E·ρ̂, E·ŝ real and positive (E·ŝ on a tie).
+        const Complex reference = std::abs(e.y()) >= std::abs(e.x()) ? e.y() : e.x();
+        const double length = e.norm();
+        if (length > 0.0 && std::abs(reference) > 0.0) {
+            const Complex scale = std::conj(reference) / (std::abs(reference) * length);
+            psi *= scale;
+            e *= scale;
+            h *= scale;
+        }
+    }
+    PlaneMode result;
+    result.psi_plane = psi;
+    BerremanMode& mode = result.mode;
+    mode.q = q;
+    mode.psi = plane.to_lab(psi);
+    const Eigen::Matrix3cd r = plane.rotation.cast<Complex>();
+    mode.e_field = r * e;
+    mode.h_field = r * h;
+    mode.forward = forward;
+    mode.evanescent = medium.lossless && amplitude_varies(q);
+    mode.flux_z = mode.evanescent ? 0.0 : flux_of(psi);  // lossless and decaying: no flux, exactly
+    return result;
+}
+
+// Coefficients c of the combination basis·c whose component `row` vanishes (a zero of a linear functional on
+// the 2-D subspace), or e₀ when the functional vanishes on it.
+Eigen::Vector2cd zero_component(const Matrix42cd& basis, int row) {
+    const Eigen::Vector2cd c(basis(row, 1), -basis(row, 0));
+    return c.norm() > 1e-12 ? Eigen::Vector2cd(c.normalized()) : Eigen::Vector2cd(1.0, 0.0);
+}
+
+// The two modes of one direction, ordered as berreman_modes documents.
+std::array<PlaneMode, 2> pair_modes(const Medium& medium, const PlaneOfIncidence& plane, const WavePair& pair,
+                                    bool forward) {
+    const Eigen::Matrix2cd& a = pair.generator;
+    if (medium.isotropic) {  // closed form, [s, p]
+        return {complete_mode(medium, plane, a(0, 0), pair.basis.col(0), forward),
+                complete_mode(medium, plane, a(0, 0), pair.basis.col(1), forward)};
+    }
+    // Eigenvalues of the 2×2 generator: m ± √(((a₀₀ − a₁₁)/2)² + a₀₁a₁₀).
+    const Complex mean = 0.5 * (a(0, 0) + a(1, 1));
+    const Complex half_difference = 0.5 * (a(0, 0) - a(1, 1));
+    const Complex root = std::sqrt(half_difference * half_difference + a(0, 1) * a(1, 0));
+    std::array<Complex, 2> mu{mean - root, mean + root};
+    const double scale = 1.0 + std::max(std::abs(mu[0]), std::abs(mu[1]));
+    if (std::abs(mu[0] - mu[1]) <= kDegenerateTolerance * scale) {
+        // Degenerate: every vector of the subspace is a mode. s-like: E·ρ̂ = ψ'₁ = 0. p-like: no cross flux with
+        // it (the flux form G restricted to the subspace), or E·ŝ = ψ'₃ = 0 where G vanishes (evanescent);
+        // the Euclidean complement if neither is independent of the s-like vector.
+        const Eigen::Vector2cd s_coefficients = zero_component(pair.basis, 0);
+        const Eigen::Matrix2cd g = flux_form(pair.basis);
+        const Eigen::Vector2cd gs = g * s_coefficients;
+        Eigen::Vector2cd p_coefficients = gs.norm() > 1e-12 * (1.0 + g.norm())
+                                              ? Eigen::Vector2cd(std::conj(gs[1]), -std::conj(gs[0])).normalized()
+                                              : zero_component(pair.basis, 2);
+        const auto independent = [&](const Eigen::Vector2cd& p) {
+            return std::abs(s_coefficients[0] * p[1] - s_coefficients[1] * p[0]) > 1e-6;
+        };
+        if (!independent(p_coefficients))
+            p_coefficients = {-std::conj(s_coefficients[1]), std::conj(s_coefficients[0])};
+        return {complete_mode(medium, plane, mean, pair.basis * s_coefficients, forward),
+                complete_mode(medium, plane, mean, pair.basis * p_coefficients, forward)};
+    }
+    // Distinct: (a − μ)v = 0 from whichever row of a − μ is the larger.
+    std::array<Eigen::Vector4cd, 2> vectors;
+    for (int i = 0; i < 2; ++i) {
+        const Eigen::Vector2cd from_row_0(a(0, 1), mu[i] - a(0, 0));
+        const Eigen::Vector2cd from_row_1(mu[i] - a(1, 1), a(1, 0));
+        vectors[i] = pair.basis * (from_row_0.norm() >= from_row_1.norm() ? from_row_0 : from_row_1);
+    }
+    // By increasing |Re q|, ties by increasing |Im q|.
+    const double tie = kDegenerateTolerance * scale;
+    const bool swap = std::abs(std::abs(mu[0].real()) - std::abs(mu[1].real())) > tie
+                          ? std::abs(mu[1].real()) < std::abs(mu[0].real())
+                          : std::abs(mu[1].imag()) < std::abs(mu[0].imag());
+    if (swap) {
+        std::swap(mu[0], mu[1]);
+        std::swap(vectors[0], vectors[1]);
+    }
+    // Two propagating waves of a lossless medium with distinct q carry no cross flux: with ε Hermitian the flux
+    // ψᴴJψ is constant along z (Poynting's theorem), so JΔ = ΔᴴJ, and Δa = λa, Δb = μb with real λ ≠ μ give
+    // (λ − μ)·bᴴJa = 0. Near a degeneracy the eigenvectors are accurate only to ε_machine/gap; removing from the
+    // second its flux projection on the first (a change of that order) restores the orthogonality exactly, so
+    // that the powers of the two waves add.
+    if (medium.lossless && !amplitude_varies(mu[0]) && !amplitude_varies(mu[1])) {
+        Matrix42cd both;
+        both << vectors[0], vectors[1];
+        const Eigen::Matrix2cd g = flux_form(both);
+        if (std::abs(g(0, 0)) > 0.0) vectors[1] -= (g(0, 1) / g(0, 0)) * vectors[0];
+    }
+    return {complete_mode(medium, plane, mu[0], vectors[0], forward),
+            complete_mode(medium, plane, mu[1], vectors[1], forward)};
+}
+
+std::array<PlaneMode, 4> all_modes(const Medium& medium, const PlaneOfIncidence& plane, const Spectrum& spectrum) {
+    const auto forward = pair_modes(medium, plane, spectrum.forward, true);
+    const auto backward = pair_modes(medium, plane, spectrum.backward, false);
+    return {forward[0], forward[1], backward[0], backward[1]};
+}
+
+// exp(x) for a 2×2 complex matrix by Lagrange–Sylvester interpolation on its eigenvalues m ± δ
+// (Moler & Van Loan, SIAM Rev. 45, 3 (2003), "polynomial methods"): exp(x) = a I + b (x − m I) with
+// a = (e^{m+δ} + e^{m−δ})/2 = e^m cosh δ and b = (e^{m+δ} − e^{m−δ})/(2δ) = e^m sinh δ/δ. The second forms
+// (series for sinh δ/δ at small δ) serve |δ| ≤ ½, where the first would cancel; the first serves larger |δ|,
+// where e^m cosh δ could overflow although e^{m±δ} (decaying waves) do not.
+Eigen::Matrix2cd exp2(const Eigen::Matrix2cd& x) {
+    const Complex m = 0.5 * (x(0, 0) + x(1, 1));
+    const Complex half_difference = 0.5 * (x(0, 0) - x(1, 1));
+    const Complex delta = std::sqrt(half_difference * half_difference + x(0, 1) * x(1, 0));
+    const Eigen::Matrix2cd shifted = x - m * Eigen::Matrix2cd::Identity();
+    Complex a, b;
+    if (std::abs(delta) <= 0.5) {
+        const Complex d2 = delta * delta;
+        const Complex sinhc = std::abs(delta) < 1e-3 ? 1.0 + d2 / 6.0 * (1.0 + d2 / 20.0) : std::sinh(delta) / delta;
+        const Complex em = std::exp(m);
+        a = em * std::cosh(delta);
+        b = em * sinhc;
+    } else {
+        const Complex e_plus = std::exp(m + delta), e_minus = std::exp(m - delta);
+        a = 0.5 * (e_plus + e_minus);
+        b = (e_plus - e_minus) / (2.0 * delta);
+    }
+    return a * Eigen::Matrix2cd::Identity() + b * shifted;
+}
+
+// A scattering matrix between two reference planes, in mode amplitudes: outgoing (forward above, backward
+// below) from incoming (forward below, backward above):
+//   forward_out = t·forward_in + r_back·backward_in,  backward_out = r·forward_in + t_back·backward_in.
+struct Scattering {
+    Eigen::Matrix2cd t = Eigen::Matrix2cd::Identity(), r = Eigen::Matrix2cd::Zero();
+    Eigen::Matrix2cd t_back = Eigen::Matrix2cd::Identity(), r_back = Eigen::Matrix2cd::Zero();
+};
+
+// The interface from medium 1 (below) to medium 2 (above): continuity of the tangential fields
+// F₁f₁ + B₁b₁ = F₂f₂ + B₂b₂ (Berreman 1972; Yeh, JOSA 69, 742 (1979)) solved for the outgoing (f₂, b₁):
+// [F₂  −B₁]·(f₂, b₁) = [F₁  −B₂]·(f₁, b₂).
+Scattering interface(const Matrix42cd& forward_1, const Matrix42cd& backward_1, const Matrix42cd& forward_2,
+                     const Matrix42cd& backward_2) {
+    Eigen::Matrix4cd outgoing, incoming;
+    outgoing << forward_2, -backward_1;
+    incoming << forward_1, -backward_2;
+    const Eigen::Matrix4cd s = outgoing.fullPivLu().solve(incoming);
+    Scattering result;
+    result.t = s.topLeftCorner<2, 2>();
+    result.r_back = s.topRightCorner<2, 2>();
+    result.r = s.bottomLeftCorner<2, 2>();
+    result.t_back = s.bottomRightCorner<2, 2>();
+    return result;
+}
+
+// Redheffer's star product: `lower` followed by `upper` (Redheffer, J. Math. Phys. 41, 1 (1962); Li, JOSA A 13,
+// 1024 (1996)). The multiple reflections between the two sum to (I − r_back,lower·r_upper)⁻¹.
+Scattering star(const Scattering& lower, const Scattering& upper) {
+    const Eigen::Matrix2cd identity = Eigen::Matrix2cd::Identity();
+    const Eigen::Matrix2cd up = (identity - lower.r_back * upper.r).inverse();
+    const Eigen::Matrix2cd down = (identity - upper.r * lower.r_back).inverse();
+    Scattering result;
+    result.t = upper.t * up * lower.t;
+    result.r = lower.r + lower.t_back * upper.r * up * lower.t;
+    result.t_back = lower.t_back * down * upper.t_back;
+    result.r_back = upper.r_back + upper.t * up * lower.r_back * upper.t_back;
+    return result;
+}
+
+Matrix42cd columns(const std::array<PlaneMode, 4>& modes, int first) {
+    Matrix42cd m;
+    m << modes[first].psi_plane, modes[first + 1].psi_plane;
+    return m;
+}
+
+}  // namespace
+
+std::array<BerremanMode, 4> berreman_modes(const Eigen::Matrix3cd& epsilon, const Eigen::Vector2d& xi) {
+    const PlaneOfIncidence plane(xi);
+    const Medium medium(epsilon, plane);
+    const auto modes = all_modes(medium, plane, medium_spectrum(medium));
+    return {modes[0].mode, modes[1].mode, modes[2].mode, modes[3].mode};
+}
+
+// Stable formulation: inside each layer the forward waves are referred to the layer's lower face and the
+// backward waves to its upper face, so crossing the layer multiplies them by exp(i k₀ d A_f) and
+// exp(−i k₀ d A_b) (A the generators of the forward and backward subspaces of Δ), whose eigenvalues decay or
+// have unit modulus. The plain transfer-matrix product exp(i k₀ Δ d) would mix growing exponentials
+// exp(k₀ d |Im q|) with decaying ones and lose every digit in thick evanescent layers; the scattering matrices,
+// combined by the star product, never form a growing exponential (Ko & Inkson, PRB 38, 9945 (1988); Li 1996).
+StackResponse solve_stack(const Eigen::Matrix3cd& ambient, const std::vector<StackLayer>& layers,
+                          const Eigen::Matrix3cd& substrate, double wavelength_nm, const Eigen::Vector2d& xi,
+                          const Eigen::Vector4cd& incident_psi) {
+    if (!(wavelength_nm > 0.0) || !std::isfinite(wavelength_nm)) {
+        throw std::invalid_argument("solve_stack: the wavelength must be positive and finite");
+    }
+    for (const StackLayer& layer : layers) {
+        if (!(layer.thickness_um >= 0.0) || !std::isfinite(layer.thickness_um)) {
+            throw std::invalid_argument("solve_stack: layer thicknesses must be non-negative and finite");
+        }
+    }
+    const double k0_per_um = 2.0 * std::numbers::pi * 1e3 / wavelength_nm;  // k₀ = 2π/λ
+    const PlaneOfIncidence plane(xi);
+
+    const Medium ambient_medium(ambient, plane);
+    const auto ambient_modes = all_modes(ambient_medium, plane, medium_spectrum(ambient_medium));
+    const Medium substrate_medium(substrate, plane);
+    const auto substrate_modes = all_modes(substrate_medium, plane, medium_spectrum(substrate_medium));
+
+    Scattering total;  // identity
+    Matrix42cd forward_below = columns(ambient_modes, 0), backward_below = columns(ambient_modes, 2);
+    for (const StackLayer& layer : layers) {
+        const Medium medium(layer.epsilon, plane);
+        const Spectrum spectrum = medium_spectrum(medium, true);
+        total = star(total, interface(forward_below, backward_below, spectrum.forward.basis, spectrum.backward.basis));
+        // Across the layer: ψ(z + d) = exp(i k₀ Δ d) ψ(z) restricted to each invariant subspace.
+        Scattering propagation;
+        const double phase = k0_per_um * layer.thickness_um;
+        propagation.t = exp2(Complex(0.0, phase) * spectrum.forward.generator);
+        propagation.t_back = exp2(Complex(0.0, -phase) * spectrum.backward.generator);
+        total = star(total, propagation);
+        forward_below = spectrum.forward.basis;
+        backward_below = spectrum.backward.basis;
+    }
+    total =
+        star(total, interface(forward_below, backward_below, columns(substrate_modes, 0), columns(substrate_modes, 2)));
+
+    // The incident wave's forward-mode amplitudes (its backward-mode components are discarded).
+    Eigen::Matrix4cd ambient_basis;
+    ambient_basis << columns(ambient_modes, 0), columns(ambient_modes, 2);
+    const Eigen::Vector4cd all_amplitudes = ambient_basis.fullPivLu().solve(plane.to_plane(incident_psi));
+    const Eigen::Vector2cd incident = all_amplitudes.head<2>();
+    const Eigen::Vector2cd reflected = total.r * incident;
+    const Eigen::Vector2cd transmitted = total.t * incident;
+
+    StackResponse response;
+    response.incident_flux_z = flux_of(columns(ambient_modes, 0) * incident);
+    const double incident_flux = response.incident_flux_z;
+    const auto power = [&](const BerremanMode& mode, Complex amplitude) {
+        if (mode.evanescent || !(incident_flux > 0.0)) return 0.0;
+        return std::norm(amplitude) * std::abs(mode.flux_z) / incident_flux;
+    };
+    for (int i = 0; i < 2; ++i) {
+        response.reflected_modes[i] = ambient_modes[2 + i].mode;
+        response.reflected_amplitudes[i] = reflected[i];
+        response.reflected_power[i] = power(ambient_modes[2 + i].mode, reflected[i]);
+        response.transmitted_modes[i] = substrate_modes[i].mode;
+        response.transmitted_amplitudes[i] = transmitted[i];
+        response.transmitted_power[i] = power(substrate_modes[i].mode, transmitted[i]);
+    }
+    return response;
+}
+
+}  // namespace petroscope

@@ -1,0 +1,289 @@
+#include "petroscope/optics/interface.hpp"
+
+#include "local_modes.hpp"
+
+#include "petroscope/core/error.hpp"
+#include "petroscope/optics/eigenmodes.hpp"
+
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+
+namespace petroscope {
+namespace {
+
+using complex = std::complex<double>;
+using detail::Extended;
+using detail::ExtendedComplex;
+using detail::ExtendedVector3;
+using detail::LocalMode;
+using detail::LocalModes;
+using ExtendedVector4 = Eigen::Matrix<ExtendedComplex, 4, 1>;
+using ExtendedMatrix = Eigen::Matrix<ExtendedComplex, Eigen::Dynamic, Eigen::Dynamic>;
+
+complex rounded(ExtendedComplex z) { return {static_cast<double>(z.real()), static_cast<double>(z.imag())}; }
+
+// √(N·N) for N = (ξ, 0, q): the (complex) index of a mode.
+ExtendedComplex mode_index(Extended xi, const LocalMode& mode) {
+    ExtendedComplex n = std::sqrt(xi * xi + mode.q * mode.q);
+    return n.real() < 0.0L ? -n : n;
+}
+
+// The local frame: z along the normal, x along the incident wave's tangential direction (so that the
+// tangential wavevector is (ξ, 0)), y = z × x = ŝ. At normal incidence ŝ = normal × x̂ (or normal × ŷ when
+// the normal lies along x), as in docs/interface.md. Rows: local axes in lab coordinates.
+Eigen::Matrix3d local_frame(const Eigen::Vector3d& normal, const Eigen::Vector3d& k_hat) {
+    const Eigen::Vector3d tangential = k_hat - k_hat.dot(normal) * normal;
+    Eigen::Vector3d y;
+    if (tangential.norm() > 1e-15) {
+        y = normal.cross(tangential).normalized();
+    } else {
+        const Eigen::Vector3d reference = std::abs(normal.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+        y = normal.cross(reference).normalized();
+    }
+    const Eigen::Vector3d x = y.cross(normal);
+    Eigen::Matrix3d frame;
+    frame.row(0) = x.transpose();
+    frame.row(1) = y.transpose();
+    frame.row(2) = normal.transpose();
+    return frame;
+}
+
+OpticalMedium in_frame(const OpticalMedium& medium, const Eigen::Matrix3d& frame) {
+    return OpticalMedium{medium.principal_n, frame * medium.axes};
+}
+
+// The name of anisotropic mode `sheet` (0: smaller Re n).
+std::string mode_name(const OpticalMedium& medium, const LocalModes& modes, Extended xi, int sheet, bool forward) {
+    if (!medium.is_uniaxial()) return sheet == 0 ? "fast" : "slow";
+    // Uniaxial: the ordinary wave is the one whose index is n_o (the repeated principal index).
+    const complex n_o_double = medium.principal_n[0] == medium.principal_n[1] ? medium.principal_n[0] : medium.principal_n[2];
+    const ExtendedComplex n_o(n_o_double.real(), n_o_double.imag());
+    const auto& pair = forward ? modes.forward : modes.backward;
+    const auto distance = [&](const LocalMode& mode) { return std::abs(mode_index(xi, mode) - n_o); };
+    const bool first_is_ordinary = distance(pair[0]) <= distance(pair[1]);
+    return (sheet == 0) == first_is_ordinary ? "ordinary" : "extraordinary";
+}
+
+ExtendedVector4 tangential(const LocalMode& mode) {
+    return {mode.e_field.x(), mode.e_field.y(), mode.h_field.x(), mode.h_field.y()};
+}
+
+// ⟨u, v⟩ = ½(E_u × H_v* + E_v* × H_u)_z: the cross term of the z flux of a superposition of u and v (for
+// u = v, twice the flux). Distinct modes of a lossless medium are exactly orthogonal in it.
+ExtendedComplex flux_form(const LocalMode& u, const LocalMode& v) {
+    return Extended(0.5) * (detail::bilinear_cross(u.e_field, v.h_field.conjugate()) + detail::bilinear_cross(v.e_field.conjugate(), u.h_field)).z();
+}
+
+// Restores the exact power orthogonality of the propagating modes of a lossless medium (Gram–Schmidt in
+// the flux form, in the given order). Rounding breaks it by about residual/splitting: near grazing
+// incidence, where a sheet's forward and backward roots nearly meet, or on an optic axis, where any basis
+// of the degenerate pair is a solution, and the per-wave powers would then not add up. The fields change
+// by the relative amount of that broken orthogonality, within their conditioning.
+void orthogonalize_fluxes(const std::vector<LocalMode*>& modes) {
+    for (std::size_t i = 0; i < modes.size(); ++i) {
+        if (modes[i]->evanescent) continue;
+        for (std::size_t j = 0; j < i; ++j) {
+            const LocalMode& u = *modes[j];
+            if (u.evanescent) continue;
+            const Extended self = flux_form(u, u).real();
+            const ExtendedComplex beta = std::conj(flux_form(u, *modes[i])) / self;
+            modes[i]->e_field -= beta * u.e_field;
+            modes[i]->h_field -= beta * u.h_field;
+        }
+        modes[i]->flux_z = detail::poynting(modes[i]->e_field, modes[i]->h_field).z();
+    }
+}
+
+// One outgoing wave: a group of modes (one anisotropic mode, or the s and p modes of an isotropic medium).
+struct Group {
+    std::vector<const LocalMode*> modes;
+    std::vector<int> unknowns;  // their columns in the boundary system
+    std::string name;
+    InterfaceWave::Kind kind;
+};
+
+InputError bad(const std::string& what) { return InputError(what); }
+
+void check_vector(const Eigen::Vector3d& v, const std::string& what) {
+    if (!v.allFinite() || v.norm() == 0.0) throw bad(what + " must be a finite, non-zero vector");
+}
+
+void check_medium(const OpticalMedium& medium, const std::string& what) {
+    for (int i = 0; i < 3; ++i) {
+        const complex n = medium.principal_n[i];
+        if (!std::isfinite(n.real()) || !std::isfinite(n.imag()) || n.real() <= 0.0 || n.imag() < 0.0) {
+            throw bad(what + ": refractive indices must be finite with n > 0 and κ >= 0");
+        }
+    }
+    if (!medium.axes.allFinite() || !(medium.axes.transpose() * medium.axes).isIdentity(1e-9)) {
+        throw bad(what + ": orientation is not a rotation");
+    }
+}
+
+}  // namespace
+
+InterfaceResult solve_interface(const Eigen::Vector3d& normal_in, const InterfaceIncidence& incidence, const OpticalMedium& medium1,
+                                const OpticalMedium& medium2) {
+    check_vector(normal_in, "the interface normal");
+    check_vector(incidence.direction, "the incident direction");
+    check_medium(medium1, "medium 1");
+    check_medium(medium2, "medium 2");
+    if (!medium1.is_lossless()) throw bad("medium 1 must be transparent (κ = 0): the incident wave must be homogeneous");
+    const Eigen::Vector3d normal = normal_in.normalized();
+    const Eigen::Vector3d k_hat = incidence.direction.normalized();
+    const double cos_incidence = k_hat.dot(normal);
+    if (!(cos_incidence > 0.0)) {
+        throw bad("the incident direction must point from medium 1 into medium 2 (positive component along the normal)");
+    }
+    const Eigen::Matrix3d frame = local_frame(normal, k_hat);
+    const OpticalMedium local1 = in_frame(medium1, frame), local2 = in_frame(medium2, frame);
+
+    // The incident wave: its index (a mode's, in an anisotropic medium 1) fixes ξ = n sin θ.
+    InterfaceResult result;
+    int incident_sheet = -1;
+    if (medium1.is_isotropic()) {
+        result.incident_n = medium1.principal_n[0];
+    } else {
+        const ModePair pair = eigenmodes(BinormalFrame(Indicatrix{medium1.real_n(), medium1.axes}), k_hat);
+        if (incidence.mode == "fast" || incidence.mode == "slow") {
+            incident_sheet = incidence.mode == "fast" ? 0 : 1;
+        } else if (medium1.is_uniaxial() && (incidence.mode == "ordinary" || incidence.mode == "extraordinary")) {
+            const double n_o = medium1.principal_n[0] == medium1.principal_n[1] ? medium1.principal_n[0].real() : medium1.principal_n[2].real();
+            const bool fast_is_ordinary = std::abs(pair.fast.n - n_o) <= std::abs(pair.slow.n - n_o);
+            incident_sheet = (incidence.mode == "ordinary") == fast_is_ordinary ? 0 : 1;
+        } else {
+            throw bad("medium 1 is anisotropic: the incident wave must be one of its modes, \"fast\" or \"slow\"" +
+                      std::string(medium1.is_uniaxial() ? " (or \"ordinary\", \"extraordinary\")" : "") + ", not '" +
+                      incidence.mode + "'");
+        }
+        result.incident_n = incident_sheet == 0 ? pair.fast.n : pair.slow.n;
+    }
+    // ξ = n sin θ, with sin θ as the length of the tangential part of k̂ (√(1 − cos²θ) would lose it near
+    // normal incidence).
+    const Eigen::Vector3d tangential_part = k_hat - cos_incidence * normal;  // |…| = sin θ, exact near normal incidence
+    const Extended xi = static_cast<Extended>(result.incident_n.real()) * static_cast<Extended>(tangential_part.norm());
+    LocalModes modes1 = detail::local_modes(local1, static_cast<double>(xi));
+    LocalModes modes2 = detail::local_modes(local2, static_cast<double>(xi));
+
+    // Incident waves (one per input basis state): s and p, or the chosen mode.
+    std::vector<LocalMode*> inputs;
+    if (incident_sheet < 0) {
+        inputs = {&modes1.forward[0], &modes1.forward[1]};
+    } else {
+        // The propagating forward mode with the incident wave's index (an evanescent sibling may sort first).
+        const ExtendedComplex incident_n(result.incident_n.real(), result.incident_n.imag());
+        const auto mismatch = [&](const LocalMode& mode) {
+            return mode.evanescent ? Extended(1e300) : std::abs(mode_index(xi, mode) - incident_n);
+        };
+        inputs.push_back(mismatch(modes1.forward[0]) <= mismatch(modes1.forward[1]) ? &modes1.forward[0] : &modes1.forward[1]);
+    }
+    // Power orthogonality (lossless anisotropic media): the incident mode stays as it is, the others are
+    // made orthogonal to it and to each other.
+    if (!medium1.is_isotropic() && medium1.is_lossless()) {
+        std::vector<LocalMode*> order{inputs.front()};
+        for (LocalMode* mode : {&modes1.forward[0], &modes1.forward[1], &modes1.backward[0], &modes1.backward[1]}) {
+            if (mode != inputs.front()) order.push_back(mode);
+        }
+        orthogonalize_fluxes(order);
+    }
+    if (!medium2.is_isotropic() && medium2.is_lossless()) orthogonalize_fluxes({&modes2.forward[0], &modes2.forward[1]});
+    const Eigen::Matrix3d to_lab = frame.transpose();
+    const auto lab_vector = [&](const Eigen::Matrix<Extended, 3, 1>& local) -> Eigen::Vector3d {
+        return to_lab * local.cast<double>().normalized();
+    };
+    result.incident_ray_direction = lab_vector(detail::poynting(inputs.front()->e_field, inputs.front()->h_field));
+
+    // Boundary conditions: Σ rⱼ ψ(backward₁ⱼ) − Σ tₖ ψ(forward₂ₖ) = −ψ(incident) for the tangential
+    // (E_x, E_y, H_x, H_y), solved in long double (see local_modes.hpp).
+    Eigen::Matrix<ExtendedComplex, 4, 4> system;
+    system << tangential(modes1.backward[0]), tangential(modes1.backward[1]), -tangential(modes2.forward[0]),
+        -tangential(modes2.forward[1]);
+    const Eigen::FullPivLU<Eigen::Matrix<ExtendedComplex, 4, 4>> lu(system);
+    const int input_count = static_cast<int>(inputs.size());
+    ExtendedMatrix amplitudes(4, input_count);
+    for (int i = 0; i < input_count; ++i) amplitudes.col(i) = lu.solve(ExtendedVector4(-tangential(*inputs[static_cast<std::size_t>(i)])));
+
+    // The incident state in the input basis, and its flux (the s and p modes carry no cross flux).
+    ExtendedMatrix coherency = ExtendedMatrix::Ones(1, 1);
+    std::optional<Eigen::Matrix<ExtendedComplex, Eigen::Dynamic, 1>> jones;
+    if (incident_sheet < 0) {
+        coherency = (incidence.coherency / incidence.coherency.trace().real()).cast<ExtendedComplex>();
+        if (incidence.jones) jones = (*incidence.jones / incidence.jones->norm()).cast<ExtendedComplex>();
+    } else {
+        jones = Eigen::Matrix<ExtendedComplex, Eigen::Dynamic, 1>::Ones(1);
+    }
+    Extended incident_flux = 0.0L;
+    for (int i = 0; i < input_count; ++i) incident_flux += coherency(i, i).real() * inputs[static_cast<std::size_t>(i)]->flux_z;
+
+    std::vector<Group> groups;
+    const auto add_groups = [&](const OpticalMedium& medium, const OpticalMedium& local, const LocalModes& modes, bool reflected) {
+        const auto& pair = reflected ? modes.backward : modes.forward;
+        const int base = reflected ? 0 : 2;
+        const auto kind = reflected ? InterfaceWave::Kind::reflected : InterfaceWave::Kind::transmitted;
+        if (medium.is_isotropic()) {
+            groups.push_back({{&pair[0], &pair[1]}, {base, base + 1}, "s+p", kind});
+        } else {
+            for (int sheet = 0; sheet < 2; ++sheet) {
+                groups.push_back({{&pair[static_cast<std::size_t>(sheet)]}, {base + sheet}, mode_name(local, modes, xi, sheet, !reflected), kind});
+            }
+        }
+    };
+    add_groups(medium1, local1, modes1, true);
+    add_groups(medium2, local2, modes2, false);
+
+    const bool lossless = medium1.is_lossless() && medium2.is_lossless();
+    for (const Group& group : groups) {
+        InterfaceWave wave;
+        wave.kind = group.kind;
+        wave.mode = group.name;
+        const LocalMode& lead = *group.modes.front();
+        wave.n = rounded(mode_index(xi, lead));
+        const Eigen::Matrix<Extended, 3, 1> direction(xi, 0.0L, lead.q.real());
+        const Eigen::Vector3d local_direction = direction.cast<double>().normalized();
+        wave.direction = to_lab * local_direction;
+        wave.evanescent = lead.evanescent;
+        // Field of the wave per input state: E = Σ aₘ eₘ (3 × inputs), and its flux.
+        ExtendedMatrix field = ExtendedMatrix::Zero(3, input_count);
+        Extended flux = 0.0L;
+        Eigen::Matrix<Extended, 3, 1> ray = Eigen::Matrix<Extended, 3, 1>::Zero();
+        for (std::size_t m = 0; m < group.modes.size(); ++m) {
+            const ExtendedMatrix a = amplitudes.row(group.unknowns[m]);
+            field += group.modes[m]->e_field * a;
+            const Extended weight = (a * coherency * a.adjoint())(0, 0).real();
+            flux += weight * group.modes[m]->flux_z;
+            ray += weight * detail::poynting(group.modes[m]->e_field, group.modes[m]->h_field);
+        }
+        wave.power = wave.evanescent && lossless ? 0.0 : static_cast<double>(std::abs(flux) / incident_flux);
+        wave.ray_direction = ray.norm() > 0.0L ? lab_vector(ray) : wave.direction;
+        // The wave's own (s, p) basis: ŝ = normal × k̂ (ŷ when k̂ ∥ normal), p̂ = ŝ × k̂.
+        Eigen::Vector3d s_hat = Eigen::Vector3d::UnitZ().cross(local_direction);
+        s_hat = s_hat.norm() > 1e-15 ? Eigen::Vector3d(s_hat.normalized()) : Eigen::Vector3d::UnitY();
+        const Eigen::Vector3d p_hat = s_hat.cross(local_direction);
+        ExtendedMatrix basis_jones(2, input_count);
+        basis_jones.row(0) = s_hat.cast<Extended>().cast<ExtendedComplex>().transpose() * field;
+        basis_jones.row(1) = p_hat.cast<Extended>().cast<ExtendedComplex>().transpose() * field;
+        const ExtendedMatrix out = basis_jones * coherency * basis_jones.adjoint();
+        CoherencyMatrix out_double;
+        for (int i = 0; i < 2; ++i) for (int j = 0; j < 2; ++j) out_double(i, j) = rounded(out(i, j));
+        const Eigen::Vector4d stokes = stokes_from_coherency(out_double);
+        wave.stokes = stokes[0] > 0.0 ? Eigen::Vector4d(stokes * (wave.power / stokes[0])) : Eigen::Vector4d::Zero();
+        if (jones) {
+            if (group.modes.size() == 2) {
+                const Eigen::Matrix<ExtendedComplex, Eigen::Dynamic, 1> out_jones = basis_jones * *jones;
+                wave.jones = JonesVector(rounded(out_jones[0]), rounded(out_jones[1]));
+            } else {
+                wave.amplitude = rounded((amplitudes.row(group.unknowns[0]) * *jones)(0, 0));
+                Eigen::Vector3cd local_field;
+                for (int k = 0; k < 3; ++k) local_field[k] = rounded(lead.e_field[k]);
+                wave.e_field = to_lab.cast<complex>() * local_field;
+            }
+        }
+        result.waves.push_back(wave);
+    }
+    return result;
+}
+
+}  // namespace petroscope
