@@ -59,19 +59,28 @@ SheetEquation<Real> sheet_equation(const BasicBinormalFrame<Real>& frame, const 
             frame.binormal_2.z()};
 }
 
-// Two Newton steps in extended precision. Near grazing incidence g'(q) ∝ q → 0, and evaluating g in double
-// leaves q off by about ε/g'; with the root exact to its last bit the mode fields solve the wave equation
-// to rounding, and the fluxes at an interface balance (R + T = 1).
-double polish(const SheetEquation<double>& equation, double q) {
-    const SheetEquation<long double> extended = equation.as<long double>();
-    long double root = q;
-    for (int step = 0; step < 2; ++step) {
-        long double derivative = 0.0L;
-        const long double value = extended.value(root, &derivative);
-        if (derivative == 0.0L || !std::isfinite(static_cast<double>(value / derivative))) break;
-        root -= value / derivative;
+// Newton steps in extended precision, each kept only if it lowers |g| and moves q by less than 1e-6·q
+// (the double root is already that close): at the kink of a sheet on a binormal a plain step can jump.
+long double polished(const SheetEquation<long double>& equation, long double q) {
+    long double derivative = 0.0L;
+    long double value = equation.value(q, &derivative);
+    for (int step = 0; step < 3 && value != 0.0L && derivative != 0.0L; ++step) {
+        const long double next = q - value / derivative;
+        if (!(std::abs(next - q) <= 1e-6L * std::abs(q))) break;
+        long double next_derivative = 0.0L;
+        const long double next_value = equation.value(next, &next_derivative);
+        if (!(std::abs(next_value) < std::abs(value))) break;
+        q = next;
+        value = next_value;
+        derivative = next_derivative;
     }
-    return static_cast<double>(root);
+    return q;
+}
+
+// Near grazing incidence g'(q) ∝ q → 0, and evaluating g in double leaves q off by about ε/g'; polished in
+// long double the root is exact to its last bit, so the mode fields solve the wave equation to rounding.
+double polish(const SheetEquation<double>& equation, double q) {
+    return static_cast<double>(polished(equation.as<long double>(), q));
 }
 
 // Root of the sheet equation between `end_a` (where g < 0: q = 0) and `end_b` (where g > 0), by Newton's
@@ -114,15 +123,28 @@ double forward_quadratic_root(const SheetEquation<double>& e, double orientation
     return std::max(r1, r2);
 }
 
-SlabMode make_mode(const BinormalFrame& frame, const Eigen::Vector2d& xi, double q, int sheet) {
-    const Eigen::Vector3d n_vector(xi.x(), xi.y(), q);
-    const Eigen::Vector3d k_hat = n_vector.normalized();
-    const auto [d_fast, d_slow] = vibration_directions(frame, k_hat);
-    SlabMode mode;
-    mode.q = q;
-    mode.e_field = frame.impermeability * (sheet == 0 ? d_fast : d_slow);
-    mode.h_field = n_vector.cross(mode.e_field);  // H = N × E (units of √(ε₀/μ₀))
-    return mode;
+// Relative splitting of the two sheets' roots below which their vibration directions are taken at one
+// common wave normal. Within ~1e-16 rad of a binormal the two roots' normals can lie on opposite sides of
+// it, where the projection of the binormal flips: computed separately, D_fast at one normal and D_slow at
+// the other can then be parallel. At a common normal they are orthogonal by construction, and the modes
+// being degenerate to this precision, any orthogonal pair is a solution.
+constexpr double kCommonNormalSplitting = 1e-9;
+
+// The fields of the two modes with wave vectors (ξ, q_fast) and (ξ, q_slow): E = η·D, H = N × E.
+template <typename Real>
+std::array<std::pair<Eigen::Matrix<Real, 3, 1>, Eigen::Matrix<Real, 3, 1>>, 2> mode_fields(
+    const BasicBinormalFrame<Real>& frame, const Eigen::Vector2d& xi, Real q_fast, Real q_slow) {
+    using Vector = Eigen::Matrix<Real, 3, 1>;
+    const Vector n_fast(xi.x(), xi.y(), q_fast), n_slow(xi.x(), xi.y(), q_slow);
+    Vector d_fast, d_slow;
+    if (std::abs(q_fast - q_slow) <= Real(kCommonNormalSplitting) * std::abs(q_fast)) {
+        std::tie(d_fast, d_slow) = vibration_directions(frame, Vector((n_fast + n_slow).normalized()));
+    } else {
+        d_fast = vibration_directions(frame, Vector(n_fast.normalized())).first;
+        d_slow = vibration_directions(frame, Vector(n_slow.normalized())).second;
+    }
+    const Vector e_fast = frame.impermeability * d_fast, e_slow = frame.impermeability * d_slow;
+    return {{{e_fast, n_fast.cross(e_fast)}, {e_slow, n_slow.cross(e_slow)}}};
 }
 
 // Amplitudes (s, p) of the forward (`sign` = +1) or backward (−1) plane waves of an isotropic medium of
@@ -165,22 +187,25 @@ SlabMode time_reversed(const SlabMode& mode) {
 bool solve_forward_modes(const BinormalFrame& frame, const Eigen::Vector2d& xi, const Eigen::Vector2d& guess,
                          std::array<SlabMode, 2>& modes) {
     const double n_max = 1.0 / std::sqrt(frame.c);
+    std::array<double, 2> q{};
     for (int sheet = 0; sheet < 2; ++sheet) {
         const SheetEquation<double> equation = sheet_equation(frame, xi, sheet);
         double derivative = 0.0;
         // |ξ| reaches the sheet's index: no propagating mode on this sheet.
         if (equation.value(0.0, &derivative) >= 0.0) return false;
-        const double q = polish(equation, frame.uniaxial() ? forward_quadratic_root(equation, frame.binormal_1.dot(frame.binormal_2))
-                                                           : solve_bracketed(equation, 0.0, 2.0 * n_max, guess[sheet]));  // g(2 n_max) > 0
-        modes[sheet] = make_mode(frame, xi, q, sheet);
+        q[static_cast<std::size_t>(sheet)] =
+            polish(equation, frame.uniaxial() ? forward_quadratic_root(equation, frame.binormal_1.dot(frame.binormal_2))
+                                              : solve_bracketed(equation, 0.0, 2.0 * n_max, guess[sheet]));  // g(2 n_max) > 0
     }
+    const auto fields = mode_fields(frame, xi, q[0], q[1]);
+    for (std::size_t sheet = 0; sheet < 2; ++sheet) modes[sheet] = SlabMode{q[sheet], fields[sheet].first, fields[sheet].second};
     return true;
 }
 
 bool solve_sheet_modes_extended(const BasicBinormalFrame<long double>& frame, const Eigen::Vector2d& xi,
                                 std::array<ExtendedSlabMode, 4>& modes) {
-    using Vector = Eigen::Matrix<long double, 3, 1>;
     const long double n_max = 1.0L / std::sqrt(frame.c);
+    std::array<long double, 4> roots{};
     for (int sheet = 0; sheet < 2; ++sheet) {
         const SheetEquation<long double> equation = sheet_equation(frame, xi, sheet);
         const SheetEquation<double> rounded = equation.as<double>();
@@ -209,17 +234,15 @@ bool solve_sheet_modes_extended(const BasicBinormalFrame<long double>& frame, co
         for (int end = 0; end < 2; ++end) {
             // A root between the inside point and ±2 n_max, then Newton in long double.
             const double outside = end == 0 ? static_cast<double>(2.0L * n_max) : static_cast<double>(-2.0L * n_max);
-            long double q = solve_bracketed(rounded, static_cast<double>(inside), outside, std::numeric_limits<double>::quiet_NaN());
-            for (int step = 0; step < 3; ++step) {
-                long double slope = 0.0L;
-                const long double value = equation.value(q, &slope);
-                if (slope == 0.0L) break;
-                q -= value / slope;
-            }
-            const Vector n_vector(xi.x(), xi.y(), q);
-            const auto [d_fast, d_slow] = vibration_directions(frame, Vector(n_vector.normalized()));
-            modes[static_cast<std::size_t>(2 * sheet + end)] = {q, frame.impermeability * (sheet == 0 ? d_fast : d_slow)};
+            roots[static_cast<std::size_t>(2 * sheet + end)] =
+                polished(equation, solve_bracketed(rounded, static_cast<double>(inside), outside, std::numeric_limits<double>::quiet_NaN()));
         }
+    }
+    // The upper (end 0) and lower (end 1) roots of the two sheets, paired for the vibration directions.
+    for (std::size_t end = 0; end < 2; ++end) {
+        const auto fields = mode_fields(frame, xi, roots[end], roots[2 + end]);
+        modes[end] = {roots[end], fields[0].first};
+        modes[2 + end] = {roots[2 + end], fields[1].first};
     }
     return true;
 }
