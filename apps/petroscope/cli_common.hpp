@@ -32,6 +32,11 @@ private:
     std::filesystem::path image_temporary_, sidecar_temporary_;
 };
 
+/// Thrown by a subcommand to end with this exit code after printing its own report (no error message).
+struct ExitCode {
+    int code = 1;
+};
+
 /// Runs a value parser, prefixing any InputError with the option it came from ("--thickness: …").
 template <typename Parse>
 auto with_option(const std::string& option, Parse parse) {
@@ -48,5 +53,6 @@ std::string joined_command_line(int argc, char** argv);
 void add_minerals_command(CLI::App& app, std::string& minerals_dir);
 void add_conoscope_command(CLI::App& app, const std::string& minerals_dir, const std::string& command_line);
 void add_interface_command(CLI::App& app, const std::string& minerals_dir);
+void add_verify_command(CLI::App& app, const std::string& minerals_dir);
 
 }  // namespace petroscope::cli

@@ -18,7 +18,8 @@ int main(int argc, char** argv) {
         "  petroscope conoscope --mineral calcite --thickness 30um --wavelength 589nm -o calcite.png\n"
         "  petroscope minerals                                       (list the minerals)\n"
         "  petroscope minerals show quartz --wavelength 589nm --json\n"
-        "  petroscope interface --case verification/cases/brewster-p.json"};
+        "  petroscope interface --case verification/cases/brewster-p.json\n"
+        "  petroscope verify                                           (the interface model's verification suite)"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "petroscope 0.1.0");
     std::string minerals_dir;
@@ -27,10 +28,13 @@ int main(int argc, char** argv) {
     petroscope::cli::add_minerals_command(app, minerals_dir);
     petroscope::cli::add_conoscope_command(app, minerals_dir, command_line);
     petroscope::cli::add_interface_command(app, minerals_dir);
+    petroscope::cli::add_verify_command(app, minerals_dir);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         return app.exit(e);
+    } catch (const petroscope::cli::ExitCode& exit) {
+        return exit.code;
     } catch (const petroscope::InputError& e) {
         std::cerr << "petroscope: error: " << e.what() << '\n';
         return 2;

@@ -7,12 +7,18 @@
 namespace petroscope {
 namespace {
 
-// Unit projection of `v` on the plane ⟂ k̂, or zero when `v` ∥ k̂.
+// Unit projection of `v` on the plane ⟂ k̂, or zero when `v` ∥ k̂. Projected twice ("twice is enough",
+// Giraud et al., Numer. Math. 101, 87 (2005)): near a binormal the first projection is a tiny difference
+// whose rounding leaves, once normalised, a component along k̂ of order ε/|transverse|.
 template <typename Real>
 Eigen::Matrix<Real, 3, 1> unit_transverse(const Eigen::Matrix<Real, 3, 1>& v, const Eigen::Matrix<Real, 3, 1>& k_hat) {
-    const Eigen::Matrix<Real, 3, 1> transverse = v - v.dot(k_hat) * k_hat;
+    using Vector = Eigen::Matrix<Real, 3, 1>;
+    Vector transverse = v - v.dot(k_hat) * k_hat;
     const Real length = transverse.norm();
-    return length > Real(0) ? Eigen::Matrix<Real, 3, 1>(transverse / length) : Eigen::Matrix<Real, 3, 1>::Zero();
+    if (!(length > Real(0))) return Vector::Zero();
+    transverse /= length;
+    transverse -= transverse.dot(k_hat) * k_hat;
+    return transverse.normalized();
 }
 
 // Any unit vector ⟂ k̂.

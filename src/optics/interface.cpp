@@ -254,7 +254,9 @@ InterfaceResult solve_interface(const Eigen::Vector3d& normal_in, const Interfac
             field += group.modes[m]->e_field * a;
             const Extended weight = (a * coherency * a.adjoint())(0, 0).real();
             flux += weight * group.modes[m]->flux_z;
-            ray += weight * detail::poynting(group.modes[m]->e_field, group.modes[m]->h_field);
+            // A mode's ray is its own whatever its amplitude (zero-power waves included); an isotropic
+            // wave's s and p rays coincide.
+            ray += detail::poynting(group.modes[m]->e_field, group.modes[m]->h_field) * (std::abs(group.modes[m]->flux_z) > 0.0L ? Extended(1) / std::abs(group.modes[m]->flux_z) : Extended(1));
         }
         wave.power = wave.evanescent && lossless ? 0.0 : static_cast<double>(std::abs(flux) / incident_flux);
         wave.ray_direction = ray.norm() > 0.0L ? lab_vector(ray) : wave.direction;
@@ -270,6 +272,15 @@ InterfaceResult solve_interface(const Eigen::Vector3d& normal_in, const Interfac
         for (int i = 0; i < 2; ++i) for (int j = 0; j < 2; ++j) out_double(i, j) = rounded(out(i, j));
         const Eigen::Vector4d stokes = stokes_from_coherency(out_double);
         wave.stokes = stokes[0] > 0.0 ? Eigen::Vector4d(stokes * (wave.power / stokes[0])) : Eigen::Vector4d::Zero();
+        if (group.modes.size() == 1) {
+            // D = εE; its common phase removed through its largest component.
+            const OpticalMedium& local = group.kind == InterfaceWave::Kind::reflected ? local1 : local2;
+            const ExtendedVector3 d = local.permittivity().cast<ExtendedComplex>() * lead.e_field;
+            Eigen::Index largest = 0;
+            d.cwiseAbs().maxCoeff(&largest);
+            const ExtendedVector3 phased = d * (std::conj(d[largest]) / std::abs(d[largest]));
+            wave.d_direction = to_lab * phased.real().cast<double>().normalized();
+        }
         if (jones) {
             if (group.modes.size() == 2) {
                 const Eigen::Matrix<ExtendedComplex, Eigen::Dynamic, 1> out_jones = basis_jones * *jones;

@@ -46,6 +46,8 @@ struct InterfaceWave {
     /// field (phase: the largest component of the field is real and positive); `e_field` is that field.
     std::optional<std::complex<double>> amplitude;
     Eigen::Vector3cd e_field = Eigen::Vector3cd::Zero();
+    /// Anisotropic mode: its unit vibration direction D (sign free); zero for an isotropic wave.
+    Eigen::Vector3d d_direction = Eigen::Vector3d::Zero();
     bool evanescent = false;
 };
 

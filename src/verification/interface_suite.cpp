@@ -1,0 +1,354 @@
+#include "petroscope/verification/interface_suite.hpp"
+
+#include "petroscope/optics/berreman.hpp"
+#include "petroscope/optics/indicatrix.hpp"
+#include "petroscope/optics/interface.hpp"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <random>
+
+namespace petroscope {
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180.0;
+using Kind = InterfaceWave::Kind;
+
+InterfaceIncidence unpolarized(const Eigen::Vector3d& direction) {
+    InterfaceIncidence incidence;
+    incidence.direction = direction;
+    return incidence;
+}
+
+InterfaceIncidence polarized(const Eigen::Vector3d& direction, const JonesVector& jones) {
+    InterfaceIncidence incidence;
+    incidence.direction = direction;
+    incidence.jones = jones;
+    incidence.coherency = coherency_from_jones(jones);
+    return incidence;
+}
+
+const InterfaceWave* wave_of(const InterfaceResult& result, Kind kind, const std::string& mode = "") {
+    for (const InterfaceWave& wave : result.waves) {
+        if (wave.kind == kind && (mode.empty() || wave.mode == mode)) return &wave;
+    }
+    return nullptr;
+}
+
+double total_power(const InterfaceResult& result) {
+    double total = 0.0;
+    for (const InterfaceWave& wave : result.waves) total += wave.power;
+    return total;
+}
+
+Eigen::Vector3d unit_vector(std::mt19937_64& rng) {
+    std::normal_distribution<double> normal;
+    return Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
+}
+
+Eigen::Matrix3d rotation(std::mt19937_64& rng) {
+    std::normal_distribution<double> normal;
+    return Eigen::Quaterniond(normal(rng), normal(rng), normal(rng), normal(rng)).normalized().toRotationMatrix();
+}
+
+// Isotropic (1–2.6), uniaxial or biaxial (1.3–2.8, birefringence up to 0.3), lossless, random orientation.
+OpticalMedium random_medium(std::mt19937_64& rng, int kind) {
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    if (kind == 0) return OpticalMedium::isotropic(1.0 + 1.6 * unit(rng));
+    const double n1 = 1.3 + 1.2 * unit(rng);
+    const double n3 = n1 + (kind == 1 ? 0.6 * (unit(rng) - 0.5) : 0.001 + 0.3 * unit(rng));
+    const double n2 = kind == 1 ? n1 : n1 + (0.02 + 0.96 * unit(rng)) * (n3 - n1);
+    return OpticalMedium{Eigen::Vector3cd(n1, n2, n3), rotation(rng)};
+}
+
+OpticalMedium calcite_with_axis(const Eigen::Vector3d& optic_axis) {
+    // ω = 1.6584, ε = 1.4864 at 589.3 nm; Z (the optic axis) along `optic_axis`.
+    const Eigen::Vector3d z = optic_axis.normalized();
+    const Eigen::Vector3d x = (std::abs(z.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY()).cross(z).normalized();
+    OpticalMedium calcite;
+    calcite.principal_n = Eigen::Vector3cd(1.6584, 1.6584, 1.4864);
+    calcite.axes << x, z.cross(x), z;
+    return calcite;
+}
+
+VerificationTest fresnel_and_snell() {
+    VerificationTest test{"isotropic-fresnel-snell",
+                          "Reflection and refraction at isotropic interfaces 1 → 1.5, 1.5 → 1 and 1 → 2.4 from 0° to 89.9° (every 0.1°, "
+                          "below the critical angle), geometry in random orientations: r_s, r_p, t_s, t_p equal the Fresnel formulas; "
+                          "the reflection angle equals the incidence angle; n₁ sin θ₁ = n₂ sin θ₂; incident, reflected and refracted "
+                          "wave normals lie in one plane with the normal; R + T = 1.",
+                          "paper §3.1 statements 1–2; Born & Wolf §1.5.2",
+                          {}};
+    std::mt19937_64 rng(31);
+    double worst_coefficient = 0.0, worst_geometry = 0.0, worst_energy = 0.0;
+    for (const auto& [n1, n2] : {std::pair{1.0, 1.5}, std::pair{1.5, 1.0}, std::pair{1.0, 2.4}}) {
+        for (int tenth = 0; tenth <= 899; ++tenth) {
+            const double theta = tenth * 0.1 * kDegree;
+            const double sin2 = n1 * std::sin(theta) / n2;
+            if (sin2 >= 1.0) continue;
+            const double c1 = std::cos(theta), c2 = std::sqrt(1.0 - sin2 * sin2);
+            const double r_s = (n1 * c1 - n2 * c2) / (n1 * c1 + n2 * c2), r_p = (n2 * c1 - n1 * c2) / (n2 * c1 + n1 * c2);
+            const double t_s = 2 * n1 * c1 / (n1 * c1 + n2 * c2), t_p = 2 * n1 * c1 / (n2 * c1 + n1 * c2);
+            const Eigen::Matrix3d frame = rotation(rng);
+            const Eigen::Vector3d normal = frame.col(2);
+            const Eigen::Vector3d k_in = frame * Eigen::Vector3d(std::sin(theta), 0.0, c1);
+            for (int polarization = 0; polarization < 2; ++polarization) {
+                const JonesVector jones = polarization == 0 ? JonesVector(1, 0) : JonesVector(0, 1);
+                const InterfaceResult result = solve_interface(normal, polarized(k_in, jones), OpticalMedium::isotropic(n1), OpticalMedium::isotropic(n2));
+                const InterfaceWave& reflected = *wave_of(result, Kind::reflected);
+                const InterfaceWave& transmitted = *wave_of(result, Kind::transmitted);
+                const JonesVector expected_r = polarization == 0 ? JonesVector(r_s, 0) : JonesVector(0, r_p);
+                const JonesVector expected_t = polarization == 0 ? JonesVector(t_s, 0) : JonesVector(0, t_p);
+                worst_coefficient = std::max({worst_coefficient, (*reflected.jones - expected_r).norm(), (*transmitted.jones - expected_t).norm()});
+                const Eigen::Vector3d plane_normal = k_in.cross(normal);
+                worst_geometry = std::max({worst_geometry, std::abs(reflected.direction.dot(normal) + c1),
+                                           std::abs(n1 * std::sin(theta) - n2 * transmitted.direction.cross(normal).norm()),
+                                           std::abs(reflected.direction.dot(plane_normal)), std::abs(transmitted.direction.dot(plane_normal))});
+                worst_energy = std::max(worst_energy, std::abs(total_power(result) - 1.0));
+            }
+        }
+    }
+    test.check("max |Fresnel amplitude − closed form|", worst_coefficient, 0.0, 1e-12);
+    test.check("max error of reflection law, Snell's law, coplanarity", worst_geometry, 0.0, 1e-12);
+    test.check("max |R + T − 1|", worst_energy, 0.0, 1e-12);
+    return test;
+}
+
+VerificationTest total_internal_reflection() {
+    VerificationTest test{"total-internal-reflection",
+                          "1.5 → 1 beyond the critical angle (41.81°), from 42° to 89.9°: R = 1, the transmitted wave is evanescent and "
+                          "carries no power, and r_s, r_p differ in phase by δ with tan(δ/2) = cos θ √(sin²θ − n²)/sin²θ (n = n₂/n₁), so "
+                          "45° linear light leaves elliptical: |S3|/S0 = sin δ, |S2|/S0 = |cos δ|.",
+                          "paper §3.1 statement 3; Born & Wolf §1.5.4",
+                          {}};
+    const double n1 = 1.5, n2 = 1.0, n = n2 / n1;
+    double worst_reflectance = 0.0, worst_transmitted = 0.0, worst_polarization = 0.0;
+    int propagating_transmitted = 0;
+    for (int tenth = 420; tenth <= 899; ++tenth) {
+        const double theta = tenth * 0.1 * kDegree;
+        const Eigen::Vector3d k_in(std::sin(theta), 0.0, std::cos(theta));
+        const InterfaceResult result = solve_interface({0, 0, 1}, polarized(k_in, JonesVector(std::sqrt(0.5), std::sqrt(0.5))),
+                                                       OpticalMedium::isotropic(n1), OpticalMedium::isotropic(n2));
+        const InterfaceWave& reflected = *wave_of(result, Kind::reflected);
+        const InterfaceWave& transmitted = *wave_of(result, Kind::transmitted);
+        worst_reflectance = std::max(worst_reflectance, std::abs(reflected.power - 1.0));
+        worst_transmitted = std::max(worst_transmitted, transmitted.power);
+        propagating_transmitted += transmitted.evanescent ? 0 : 1;
+        const double s2 = std::sin(theta) * std::sin(theta);
+        const double delta = 2.0 * std::atan(std::cos(theta) * std::sqrt(s2 - n * n) / s2);
+        worst_polarization = std::max({worst_polarization, std::abs(std::abs(reflected.stokes[3]) / reflected.stokes[0] - std::sin(delta)),
+                                       std::abs(std::abs(reflected.stokes[2]) / reflected.stokes[0] - std::abs(std::cos(delta)))});
+    }
+    test.check("max |R − 1|", worst_reflectance, 0.0, 1e-12);
+    test.check("max transmitted power", worst_transmitted, 0.0, 1e-12);
+    test.check("transmitted waves reported as propagating", propagating_transmitted, 0.0, 0.0);
+    test.check("max error of the reflected Stokes vector (ellipticity)", worst_polarization, 0.0, 1e-12);
+    return test;
+}
+
+VerificationTest brewster() {
+    VerificationTest test{"brewster-angle",
+                          "At tan θ_B = n₂/n₁ (1 → 1.5, 1.5 → 1, 1 → 2.4): R_p = 0 and the reflected wave is perpendicular to the refracted "
+                          "one. The paper (§3.2, statement 3) says s-polarized light then has no refracted ray; that is wrong: s light is "
+                          "partly reflected, R_s = sin²(θ₁ − θ₂)/sin²(θ₁ + θ₂) (0.1479 for 1 → 1.5), and the rest, T_s = 1 − R_s, is "
+                          "refracted. The suite tests the physics.",
+                          "paper §3.2; physics notes §4; Born & Wolf §1.5.3",
+                          {}};
+    double worst_rp = 0.0, worst_perpendicular = 0.0, worst_rs = 0.0, worst_ts = 0.0;
+    for (const auto& [n1, n2] : {std::pair{1.0, 1.5}, std::pair{1.5, 1.0}, std::pair{1.0, 2.4}}) {
+        const double theta = std::atan(n2 / n1);
+        const Eigen::Vector3d k_in(std::sin(theta), 0.0, std::cos(theta));
+        const InterfaceResult p = solve_interface({0, 0, 1}, polarized(k_in, JonesVector(0, 1)), OpticalMedium::isotropic(n1), OpticalMedium::isotropic(n2));
+        worst_rp = std::max(worst_rp, wave_of(p, Kind::reflected)->power);
+        worst_perpendicular = std::max(worst_perpendicular, std::abs(wave_of(p, Kind::reflected)->direction.dot(wave_of(p, Kind::transmitted)->direction)));
+        const InterfaceResult s = solve_interface({0, 0, 1}, polarized(k_in, JonesVector(1, 0)), OpticalMedium::isotropic(n1), OpticalMedium::isotropic(n2));
+        const double theta2 = std::asin(n1 * std::sin(theta) / n2);
+        const double r_s = std::pow(std::sin(theta - theta2) / std::sin(theta + theta2), 2);
+        worst_rs = std::max(worst_rs, std::abs(wave_of(s, Kind::reflected)->power - r_s));
+        worst_ts = std::max(worst_ts, std::abs(wave_of(s, Kind::transmitted)->power - (1.0 - r_s)));
+    }
+    test.check("max R_p", worst_rp, 0.0, 1e-15);
+    test.check("max |k̂_reflected · k̂_refracted|", worst_perpendicular, 0.0, 1e-12);
+    test.check("max |R_s − sin²(θ₁−θ₂)/sin²(θ₁+θ₂)|", worst_rs, 0.0, 1e-12);
+    test.check("max |T_s − (1 − R_s)| (s light is transmitted)", worst_ts, 0.0, 1e-12);
+    return test;
+}
+
+VerificationTest uniaxial_laws(int cases) {
+    VerificationTest test{"uniaxial-ordinary-snell-and-slab",
+                          "Calcite (ω = 1.6584, ε = 1.4864) in random orientations, incidence 0–89.9° from air: the ordinary wave obeys "
+                          "Snell's law with n_o at every incidence; after a plane-parallel slab both the o and the e wave leave along "
+                          "the incident direction.",
+                          "paper §3.3; Born & Wolf §15.3",
+                          {}};
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    double worst_snell = 0.0, worst_exit = 0.0, worst_energy = 0.0;
+    for (int i = 0; i < cases; ++i) {
+        const OpticalMedium calcite = calcite_with_axis(unit_vector(rng));
+        const double theta = 89.9 * kDegree * unit(rng), phi = 2 * std::numbers::pi * unit(rng);
+        const Eigen::Vector3d k_in(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+        const InterfaceResult entry = solve_interface({0, 0, 1}, unpolarized(k_in), OpticalMedium::isotropic(1.0), calcite);
+        const InterfaceWave& o = *wave_of(entry, Kind::transmitted, "ordinary");
+        worst_snell = std::max({worst_snell, std::abs(std::sin(theta) - 1.6584 * o.direction.cross(Eigen::Vector3d::UnitZ()).norm()),
+                                std::abs(o.n.real() - 1.6584)});
+        for (const std::string mode : {"ordinary", "extraordinary"}) {
+            InterfaceIncidence inside;
+            inside.direction = wave_of(entry, Kind::transmitted, mode)->direction;
+            inside.mode = mode;
+            const InterfaceResult exit = solve_interface({0, 0, 1}, inside, calcite, OpticalMedium::isotropic(1.0));
+            const InterfaceWave* out = wave_of(exit, Kind::transmitted);
+            if (out->evanescent) continue;  // totally reflected at the exit face
+            worst_exit = std::max(worst_exit, (out->direction - k_in).norm());
+            worst_energy = std::max(worst_energy, std::abs(total_power(exit) - 1.0));
+        }
+    }
+    test.check("max error of Snell's law for the o wave (and n_o)", worst_snell, 0.0, 1e-12);
+    test.check("max |exit direction − incident direction|", worst_exit, 0.0, 1e-12);
+    test.check("max |R + T − 1| at the exit face", worst_energy, 0.0, 1e-12);
+    return test;
+}
+
+InterfaceIncidence random_incidence(std::mt19937_64& rng, const OpticalMedium& medium1, const Eigen::Vector3d& direction) {
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    InterfaceIncidence incidence;
+    incidence.direction = direction;
+    if (!medium1.is_isotropic()) {
+        incidence.mode = unit(rng) < 0.5 ? "fast" : "slow";
+    } else {
+        const Eigen::Vector3d axis = unit_vector(rng) * unit(rng);  // partially polarized
+        incidence.coherency = coherency_from_stokes({1.0, axis.x(), axis.y(), axis.z()});
+    }
+    return incidence;
+}
+
+VerificationTest random_energy(int cases) {
+    VerificationTest test{"energy-random-media",
+                          "Lossless media (isotropic, uniaxial, biaxial on either side, random indices and orientations), incidence from 0 to "
+                          "89.99°, random partial polarizations or crystal modes: the powers of all generated waves add up to the incident "
+                          "power, R + T = 1.",
+                          "petroscope",
+                          {}};
+    std::mt19937_64 rng(2027);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    double worst = 0.0;
+    for (int i = 0; i < cases; ++i) {
+        const OpticalMedium medium1 = random_medium(rng, static_cast<int>(rng() % 3));
+        const OpticalMedium medium2 = random_medium(rng, static_cast<int>(rng() % 3));
+        const Eigen::Matrix3d frame = rotation(rng);
+        const double theta = 89.99 * kDegree * unit(rng), phi = 2 * std::numbers::pi * unit(rng);
+        const Eigen::Vector3d direction = frame * Eigen::Vector3d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+        worst = std::max(worst, std::abs(total_power(solve_interface(frame.col(2), random_incidence(rng, medium1, direction), medium1, medium2)) - 1.0));
+    }
+    test.check("max |R + T − 1| over " + std::to_string(cases) + " cases", worst, 0.0, 1e-12);
+    return test;
+}
+
+VerificationTest near_optic_axis(int cases) {
+    VerificationTest test{"energy-on-and-near-optic-axes",
+                          "The paper's defect (§5): near-normal incidence on a biaxial plate along a binormal gave waves whose powers added "
+                          "up to more than the incident power. Here light refracts onto a binormal of a random biaxial or uniaxial crystal, "
+                          "exactly or within 1e-9 rad: R + T = 1, and nothing is NaN.",
+                          "paper §5",
+                          {}};
+    std::mt19937_64 rng(99);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    double worst = 0.0;
+    int non_finite = 0;
+    for (int i = 0; i < cases; ++i) {
+        const OpticalMedium crystal = random_medium(rng, i % 4 == 0 ? 1 : 2);
+        const BinormalFrame frame(Indicatrix{crystal.real_n(), crystal.axes});
+        Eigen::Vector3d binormal = i % 2 == 0 ? frame.binormal_1 : frame.binormal_2;
+        if (binormal.z() < 0) binormal = -binormal;
+        if (binormal.z() < 0.2) continue;
+        // The binormal's wave index is nβ: the wave from medium 1 that refracts onto it has ξ = nβ·b_t.
+        const double n_beta = 1.0 / std::sqrt(frame.b);
+        const double offset = i % 3 == 0 ? 0.0 : 1e-9 * unit(rng);
+        const Eigen::Vector2d xi = n_beta * binormal.head<2>() + offset * Eigen::Vector2d(std::cos(i), std::sin(i));
+        const double n1 = 1.0 + 2.0 * unit(rng);
+        if (xi.norm() >= n1) continue;
+        InterfaceIncidence incidence;
+        incidence.direction = {xi.x() / n1, xi.y() / n1, std::sqrt(1.0 - xi.squaredNorm() / (n1 * n1))};
+        incidence.coherency = coherency_from_stokes({1.0, unit(rng) - 0.5, 0.0, 0.0});
+        const InterfaceResult result = solve_interface({0, 0, 1}, incidence, OpticalMedium::isotropic(n1), crystal);
+        worst = std::max(worst, std::abs(total_power(result) - 1.0));
+        for (const InterfaceWave& wave : result.waves) non_finite += (wave.direction.allFinite() && std::isfinite(wave.power)) ? 0 : 1;
+    }
+    test.check("max |R + T − 1|", worst, 0.0, 1e-10);
+    test.check("waves with a non-finite direction or power", non_finite, 0.0, 0.0);
+    return test;
+}
+
+VerificationTest against_berreman(int cases) {
+    VerificationTest test{"interface-vs-4x4",
+                          "The interface solver (modes from the Biot–Fresnel sheets or the quartic, boundary conditions solved directly) and "
+                          "the independent Berreman 4×4 solver (modes from the eigenvectors of Δ) give every wave the same power, over random "
+                          "lossless media and incidences (isotropic, uniaxial or biaxial on either side).",
+                          "petroscope; Berreman, JOSA 62, 502 (1972)",
+                          {}};
+    std::mt19937_64 rng(4242);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    double worst = 0.0;
+    int compared = 0;
+    for (int i = 0; i < cases; ++i) {
+        const OpticalMedium medium1 = random_medium(rng, static_cast<int>(rng() % 3));
+        const OpticalMedium medium2 = random_medium(rng, static_cast<int>(rng() % 3));
+        const double theta = 85.0 * kDegree * unit(rng), phi = 2 * std::numbers::pi * unit(rng);
+        const Eigen::Vector3d direction(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+        InterfaceIncidence incidence;
+        incidence.direction = direction;
+        JonesVector jones(std::complex<double>(unit(rng) - 0.5, unit(rng) - 0.5), std::complex<double>(unit(rng) - 0.5, unit(rng) - 0.5));
+        jones.normalize();
+        if (medium1.is_isotropic()) {
+            incidence = polarized(direction, jones);
+        } else {
+            incidence.mode = unit(rng) < 0.5 ? "fast" : "slow";
+        }
+        const InterfaceResult result = solve_interface({0, 0, 1}, incidence, medium1, medium2);
+        // The same incident wave as Berreman's tangential field: ξ from the interface solution.
+        const Eigen::Vector2d xi = result.incident_n.real() * direction.head<2>();
+        const auto ambient = berreman_modes(medium1.permittivity(), xi);
+        Eigen::Vector4cd incident_psi;
+        if (medium1.is_isotropic()) {
+            incident_psi = jones[0] * ambient[0].psi + jones[1] * ambient[1].psi;
+        } else {
+            // The forward mode with the incident index.
+            const auto index = [&](const BerremanMode& mode) { return std::abs(std::sqrt(xi.squaredNorm() + mode.q * mode.q) - result.incident_n); };
+            incident_psi = index(ambient[0]) <= index(ambient[1]) ? ambient[0].psi : ambient[1].psi;
+        }
+        const StackResponse stack = solve_stack(medium1.permittivity(), {}, medium2.permittivity(), 589.3, xi, incident_psi);
+        // Compare per medium: an isotropic medium's s and p waves are one wave here; otherwise the two modes,
+        // matched by sorting their powers (the solvers order evanescent modes differently).
+        const auto compare = [&](Kind kind, std::array<double, 2> berreman_power, bool isotropic) {
+            std::vector<double> mine;
+            for (const InterfaceWave& wave : result.waves) {
+                if (wave.kind == kind) mine.push_back(wave.power);
+            }
+            if (isotropic) {
+                worst = std::max(worst, std::abs(mine.at(0) - (berreman_power[0] + berreman_power[1])));
+                return;
+            }
+            std::sort(mine.begin(), mine.end());
+            std::sort(berreman_power.begin(), berreman_power.end());
+            worst = std::max({worst, std::abs(mine.at(0) - berreman_power[0]), std::abs(mine.at(1) - berreman_power[1])});
+        };
+        compare(Kind::reflected, stack.reflected_power, medium1.is_isotropic());
+        compare(Kind::transmitted, stack.transmitted_power, medium2.is_isotropic());
+        ++compared;
+    }
+    test.check("max |power difference| over " + std::to_string(compared) + " cases", worst, 0.0, 1e-10);
+    return test;
+}
+
+}  // namespace
+
+std::vector<VerificationTest> run_interface_suite(const InterfaceSuiteSize& size) {
+    return {fresnel_and_snell(),       total_internal_reflection(),          brewster(),
+            uniaxial_laws(size.uniaxial_cases), random_energy(size.random_energy_cases), near_optic_axis(size.near_axis_cases),
+            against_berreman(size.berreman_cases)};
+}
+
+}  // namespace petroscope
