@@ -272,5 +272,86 @@ TEST_F(Cli, ConoscopeWritesFloatExr) {
     EXPECT_EQ(sidecar["mineral"]["name"], "muscovite");
 }
 
+
+// ---- petroscope interface and verify (issue 3) ----
+
+TEST_F(Cli, InterfacePrintsEveryWaveAsJson) {
+    const CommandResult run = petroscope("interface --case " + quoted(fs::path(PETROSCOPE_SOURCE_DIR) / "verification/cases/brewster-s.json") + " --json");
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const nlohmann::json result = nlohmann::json::parse(run.out);
+    ASSERT_EQ(result["waves"].size(), 2u);
+    double total = 0.0;
+    for (const auto& wave : result["waves"]) {
+        for (const char* key : {"kind", "mode", "direction", "ray_direction", "n", "power", "stokes", "evanescent"}) EXPECT_TRUE(wave.contains(key)) << key;
+        total += wave["power"].get<double>();
+    }
+    EXPECT_NEAR(total, 1.0, 1e-12);
+    // Brewster, s light: partly reflected (0.1479), the rest refracted.
+    EXPECT_NEAR(result["waves"][0]["power"].get<double>(), 0.14792899408284, 1e-12);
+    const CommandResult table = petroscope("interface --case " + quoted(fs::path(PETROSCOPE_SOURCE_DIR) / "verification/cases/brewster-s.json"));
+    EXPECT_EQ(table.exit_code, 0);
+    EXPECT_NE(table.out.find("sum of powers"), std::string::npos);
+}
+
+TEST_F(Cli, InterfaceRejectsBadCasesNamingTheKey) {
+    const std::string good_incident = R"("incident": {"direction": [0, 0, 1], "polarization": "s"})";
+    const auto run_case = [&](const std::string& name, const std::string& text) {
+        const fs::path file = out() / name;
+        std::ofstream(file) << text;
+        return petroscope("interface --case " + quoted(file));
+    };
+    const std::vector<std::tuple<std::string, std::string, std::vector<std::string>>> cases{
+        {"syntax.json", "{\"wavelength_nm\": 589.3,", {"syntax.json", "invalid JSON"}},
+        {"missing.json", R"({"wavelength_nm": 589.3, "normal": [0,0,1], "incident": {"polarization": "s"}, "medium1": {"n": 1}, "medium2": {"n": 1.5}})",
+         {"missing.json", "incident.direction", "missing"}},
+        {"zero.json", R"({"wavelength_nm": 589.3, "normal": [0,0,0], )" + good_incident + R"(, "medium1": {"n": 1}, "medium2": {"n": 1.5}})",
+         {"zero.json", "normal", "non-zero"}},
+        {"side.json", R"({"wavelength_nm": 589.3, "normal": [0,0,1], "incident": {"direction": [0,0,-1], "polarization": "s"}, "medium1": {"n": 1}, "medium2": {"n": 1.5}})",
+         {"side.json", "incident.direction", "medium 1 into medium 2"}},
+        {"index.json", R"({"wavelength_nm": 589.3, "normal": [0,0,1], )" + good_incident + R"(, "medium1": {"n": 1}, "medium2": {"n": -1.5}})",
+         {"index.json", "medium2.n", "n > 0"}},
+        {"polarization.json", R"({"wavelength_nm": 589.3, "normal": [0,0,1], "incident": {"direction": [0,0,1], "polarization": "sideways"}, "medium1": {"n": 1}, "medium2": {"n": 1.5}})",
+         {"polarization.json", "incident.polarization"}},
+        {"mineral.json", R"({"wavelength_nm": 589.3, "normal": [0,0,1], )" + good_incident + R"(, "medium1": {"n": 1}, "medium2": {"mineral": "calcyte"}})",
+         {"mineral.json", "medium2.mineral", "calcite"}},
+        {"nan.json", R"({"wavelength_nm": 589.3, "normal": [0,0,"x"], )" + good_incident + R"(, "medium1": {"n": 1}, "medium2": {"n": 1.5}})",
+         {"nan.json", "normal[2]", "expected a number"}},
+    };
+    for (const auto& [name, text, expected] : cases) {
+        SCOPED_TRACE(name);
+        const CommandResult run = run_case(name, text);
+        EXPECT_NE(run.exit_code, 0);
+        EXPECT_NE(run.exit_code, -1);
+        for (const std::string& fragment : expected) EXPECT_NE(run.err.find(fragment), std::string::npos) << fragment << " not in: " << run.err;
+    }
+}
+
+TEST_F(Cli, VerifyPassesEveryTestAndReportsJson) {
+    const CommandResult run = petroscope("verify --json");
+    ASSERT_EQ(run.exit_code, 0) << run.out.substr(0, 2000) << run.err;
+    const nlohmann::json report = nlohmann::json::parse(run.out);
+    EXPECT_GE(report["tests"].size(), 50u);
+    EXPECT_EQ(report["failed"].get<int>(), 0);
+    for (const auto& test : report["tests"]) {
+        for (const char* key : {"name", "statement", "passed", "checks"}) EXPECT_TRUE(test.contains(key)) << key;
+        EXPECT_TRUE(test["passed"].get<bool>()) << test["name"];
+    }
+    const CommandResult text = petroscope("verify");
+    EXPECT_EQ(text.exit_code, 0);
+    EXPECT_NE(text.out.find(", 0 failed"), std::string::npos);
+}
+
+TEST_F(Cli, VerifyExitsNonZeroWhenACaseFails) {
+    // A case whose expected reflectance is wrong (normal incidence 1 → 1.5 reflects 0.04, not 0.05).
+    const fs::path cases = scratch() / "cases";
+    fs::create_directories(cases);
+    std::ofstream(cases / "wrong.json") << R"({"name": "wrong", "wavelength_nm": 589.3, "normal": [0,0,1],
+        "incident": {"direction": [0,0,1], "polarization": "s"}, "medium1": {"n": 1}, "medium2": {"n": 1.5},
+        "expected": {"waves": [{"kind": "reflected", "mode": "s+p", "power": 0.05, "tolerance": {"power": 1e-12}}]}})";
+    const CommandResult run = petroscope("verify --cases " + quoted(cases));
+    EXPECT_EQ(run.exit_code, 1);
+    EXPECT_NE(run.out.find("FAIL  wrong"), std::string::npos) << run.out.substr(0, 500);
+}
+
 }  // namespace
 }  // namespace petroscope
