@@ -4,6 +4,7 @@
 #include "petroscope/io/json_reader.hpp"
 #include "petroscope/optics/orientation.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -154,6 +155,12 @@ nlohmann::json interface_result_json(const InterfaceResult& result) {
             {"stokes", {wave.stokes[0], wave.stokes[1], wave.stokes[2], wave.stokes[3]}},
             {"evanescent", wave.evanescent},
         };
+        // The polarization ellipse: b/a = tan|χ| with sin 2χ = S3/S0; right-handed when S3 > 0.
+        if (wave.stokes[0] > 0.0) {
+            const double s3 = std::clamp(wave.stokes[3] / wave.stokes[0], -1.0, 1.0);
+            entry["ellipticity"] = std::tan(0.5 * std::abs(std::asin(s3)));
+            entry["handedness"] = s3 > 1e-12 ? "right" : s3 < -1e-12 ? "left" : "linear";
+        }
         if (wave.jones) entry["jones_sp"] = {complex_json(wave.jones->x()), complex_json(wave.jones->y())};
         if (wave.amplitude) entry["amplitude"] = complex_json(*wave.amplitude);
         waves.push_back(entry);

@@ -26,7 +26,7 @@ InterfaceCase parse_interface_case(const nlohmann::json& document, const std::st
 InterfaceCase load_interface_case(const std::filesystem::path& path, const MineralCatalog& catalog);
 
 /// {"waves": [{"kind", "mode", "direction", "ray_direction", "n", "power", "stokes", "evanescent",
-///  "jones_sp"?, "amplitude"?}], "incident": {"n", "ray_direction"}}.
+///  "ellipticity", "handedness", "jones_sp"?, "amplitude"?}], "incident": {"n", "ray_direction"}}.
 nlohmann::json interface_result_json(const InterfaceResult& result);
 
 }  // namespace petroscope
