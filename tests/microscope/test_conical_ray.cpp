@@ -1,0 +1,100 @@
+// Internal conical refraction in ray optics (the paper's pinhole scene): the ring's radius and centre,
+// its rotation with the crystal, and power conservation on and near the optic axis.
+#include "petroscope/core/error.hpp"
+#include "petroscope/microscope/conical_ray.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+namespace petroscope {
+namespace {
+
+// KGd(WO4)2 at 633 nm (physics notes §7): nα, nβ, nγ = 2.0135, 2.0458, 2.0860; a 20 mm slab; a 25 µm pinhole
+// in a 50 mm collimating filter, so that the rays' blur L·θ (L = D + d/nβ) stays below R₀.
+ConicalRaySettings kgw_settings() {
+    ConicalRaySettings settings;
+    settings.principal_n = {2.0135, 2.0458, 2.0860};
+    settings.slab_um = 20000.0;
+    settings.pinhole_radius_um = 25.0;
+    settings.filter_um = 50000.0;
+    settings.screen_distance_um = 50000.0;
+    settings.rays = 150000;
+    settings.size_px = 256;
+    return settings;
+}
+
+TEST(ConicalRay, ConeAngleAndRingRadiusFollowTheIndices) {
+    // tan χ = √((nβ² − nα²)(nγ² − nβ²))/(nα nγ); A = R₀/l = ½ tan χ: χ = 2.012°, A = 17.57 mrad (physics notes §7).
+    const Eigen::Vector3d n(2.0135, 2.0458, 2.0860);
+    const double tan_chi = std::sqrt((n[1] * n[1] - n[0] * n[0]) * (n[2] * n[2] - n[1] * n[1])) / (n[0] * n[2]);
+    EXPECT_NEAR(std::tan(conical_cone_angle_rad(n)), tan_chi, 1e-12);
+    EXPECT_NEAR(conical_cone_angle_rad(n) * 180.0 / M_PI, 2.012, 5e-4);
+    EXPECT_NEAR(0.5 * tan_chi * 1000.0, 17.57, 5e-3);
+    EXPECT_NEAR(std::tan(conical_cone_angle_rad({2.0860, 2.0135, 2.0458})), tan_chi, 1e-15);  // any order
+}
+
+TEST(ConicalRay, DarkRingHasRadiusADAndPassesThroughThePointBelowThePinhole) {
+    const ConicalRayResult result = trace_conical_rays(kgw_settings());
+    const double a_d = result.ring_radius_um;
+    EXPECT_NEAR(result.rings.dark_um, a_d, 0.01 * a_d);
+    // One pixel of a 256-pixel image 4 R₀ wide.
+    const double pixel_um = 4.0 * a_d / 256.0;
+    EXPECT_NEAR((result.rings.centre_um - result.pinhole_point_um).norm(), result.rings.dark_um, pixel_um);
+    EXPECT_LT(result.rings.inner_bright_um, result.rings.dark_um);
+    EXPECT_GT(result.rings.outer_bright_um, result.rings.dark_um);
+    EXPECT_LE(result.max_interface_power_sum, 1.0 + 1e-12);
+    EXPECT_EQ(result.non_finite, 0);
+    std::printf("ray mode: R0 = A d = %.3f um, dark ring %.3f um, bright rings %.3f / %.3f um, centre %.3f um from the pinhole point\n",
+                a_d, result.rings.dark_um, result.rings.inner_bright_um, result.rings.outer_bright_um,
+                (result.rings.centre_um - result.pinhole_point_um).norm());
+}
+
+TEST(ConicalRay, TurningTheSlabAboutItsOpticAxisTurnsThePatternAboutThePinholePoint) {
+    for (const double turn_deg : {30.0, 125.0}) {
+        ConicalRaySettings settings = kgw_settings();
+        settings.rotate_deg = turn_deg;
+        const ConicalRayResult result = trace_conical_rays(settings);
+        const Eigen::Vector2d offset = result.rings.centre_um - result.pinhole_point_um;
+        EXPECT_NEAR(std::remainder(std::atan2(offset.y(), offset.x()) * 180.0 / M_PI - turn_deg, 360.0), 0.0, 0.3) << turn_deg;
+    }
+}
+
+TEST(ConicalRay, RaysExactlyAlongTheOpticAxisConservePowerAndStayFinite) {
+    // A point source whose rays all enter at normal incidence: every refracted wave lies exactly on the
+    // binormal, where the two modes are degenerate.
+    ConicalRaySettings settings = kgw_settings();
+    settings.source = ConicalRaySettings::Source::point;
+    settings.angular_width_rad = 0.0;
+    settings.rays = 2000;
+    const ConicalRayResult exact = trace_conical_rays(settings);
+    EXPECT_LE(exact.max_interface_power_sum, 1.0 + 1e-12);
+    EXPECT_EQ(exact.non_finite, 0);
+    double collected = 0.0;
+    for (const float value : exact.screen.pixels) collected += value;
+    EXPECT_GT(collected, 0.5 * settings.rays);  // most of the light arrives (minus the reflections)
+    // And within 1e-9 rad of it.
+    settings.angular_width_rad = 1e-9;
+    const ConicalRayResult near = trace_conical_rays(settings);
+    EXPECT_LE(near.max_interface_power_sum, 1.0 + 1e-12);
+    EXPECT_EQ(near.non_finite, 0);
+}
+
+TEST(ConicalRay, BadInputIsRejected) {
+    ConicalRaySettings settings = kgw_settings();
+    settings.principal_n = {1.6584, 1.6584, 1.4864};  // calcite: uniaxial
+    EXPECT_THROW(trace_conical_rays(settings), InputError);
+    settings = kgw_settings();
+    settings.slab_um = 0.0;
+    EXPECT_THROW(trace_conical_rays(settings), InputError);
+    settings = kgw_settings();
+    settings.screen_distance_um = -5.0;
+    EXPECT_THROW(trace_conical_rays(settings), InputError);
+    settings = kgw_settings();
+    settings.pinhole_radius_um = 20000.0;  // larger than the slab
+    EXPECT_THROW(trace_conical_rays(settings), InputError);
+}
+
+}  // namespace
+}  // namespace petroscope
