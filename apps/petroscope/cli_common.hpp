@@ -54,5 +54,6 @@ void add_minerals_command(CLI::App& app, std::string& minerals_dir);
 void add_conoscope_command(CLI::App& app, const std::string& minerals_dir, const std::string& command_line);
 void add_interface_command(CLI::App& app, const std::string& minerals_dir);
 void add_verify_command(CLI::App& app, const std::string& minerals_dir);
+void add_conical_command(CLI::App& app, const std::string& minerals_dir, const std::string& command_line);
 
 }  // namespace petroscope::cli

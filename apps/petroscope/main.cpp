@@ -19,7 +19,8 @@ int main(int argc, char** argv) {
         "  petroscope minerals                                       (list the minerals)\n"
         "  petroscope minerals show quartz --wavelength 589nm --json\n"
         "  petroscope interface --case verification/cases/brewster-p.json\n"
-        "  petroscope verify                                           (the interface model's verification suite)"};
+        "  petroscope verify                                           (the interface model's verification suite)\n"
+        "  petroscope conical --crystal KGW --length 20mm --wavelength 633nm -o ring.png"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "petroscope 0.1.0");
     std::string minerals_dir;
@@ -29,6 +30,7 @@ int main(int argc, char** argv) {
     petroscope::cli::add_conoscope_command(app, minerals_dir, command_line);
     petroscope::cli::add_interface_command(app, minerals_dir);
     petroscope::cli::add_verify_command(app, minerals_dir);
+    petroscope::cli::add_conical_command(app, minerals_dir, command_line);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

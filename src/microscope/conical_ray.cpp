@@ -3,6 +3,9 @@
 #include "petroscope/core/error.hpp"
 #include "petroscope/optics/interface.hpp"
 #include "petroscope/optics/orientation.hpp"
+#include "petroscope/optics/polarization.hpp"
+
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
@@ -27,8 +30,9 @@ struct Landing {
     double x, y, weight;
 };
 
-// The radial power density about `centre` (rings of width `bin`), smoothed over 5 bins.
-std::vector<double> radial_density(const std::vector<Landing>& landings, const Eigen::Vector2d& centre, double bin, std::size_t bins) {
+// The radial power density about `centre` (rings of width `bin`), smoothed over 2·half_window + 1 bins.
+std::vector<double> radial_density(const std::vector<Landing>& landings, const Eigen::Vector2d& centre, double bin, std::size_t bins,
+                                   std::size_t half_window) {
     std::vector<double> power(bins, 0.0);
     for (const Landing& landing : landings) {
         const auto index = static_cast<std::size_t>(std::hypot(landing.x - centre.x(), landing.y - centre.y()) / bin);
@@ -37,7 +41,7 @@ std::vector<double> radial_density(const std::vector<Landing>& landings, const E
     std::vector<double> density(bins, 0.0);
     for (std::size_t i = 0; i < bins; ++i) {
         double sum = 0.0, area = 0.0;
-        for (std::size_t j = (i >= 2 ? i - 2 : 0); j <= std::min(bins - 1, i + 2); ++j) {
+        for (std::size_t j = (i >= half_window ? i - half_window : 0); j <= std::min(bins - 1, i + half_window); ++j) {
             const double inner = static_cast<double>(j) * bin;
             sum += power[j];
             area += std::numbers::pi * (2.0 * inner * bin + bin * bin);
@@ -68,23 +72,58 @@ ConicalRayRings measure_rings(const std::vector<Landing>& landings, double ring_
     }
     if (!(total > 0.0)) return rings;
     rings.centre_um /= total;
-    const std::size_t bins = 800;
+    const std::size_t bins = 4000;
     const double bin = 2.0 * ring_radius / static_cast<double>(bins);  // out to 2 R₀
-    const std::vector<double> density = radial_density(landings, rings.centre_um, bin, bins);
-    // The bright rings: the two highest local maxima (over ±3 bins); the dark ring: the minimum between.
-    std::vector<std::size_t> peaks;
-    for (std::size_t i = 3; i + 3 < bins; ++i) {
-        bool is_peak = density[i] > 0.0;
-        for (std::size_t j = i - 3; j <= i + 3 && is_peak; ++j) is_peak = density[j] <= density[i];
-        if (is_peak) peaks.push_back(i);
+    // Smoothing and the separation of the two bright rings scale with the pattern's own width: the spread
+    // s of the landing radii about their (power-weighted) median; the rings lie about s apart.
+    std::vector<std::pair<double, double>> radii;  // (radius, weight)
+    for (const Landing& landing : landings) radii.emplace_back(std::hypot(landing.x - rings.centre_um.x(), landing.y - rings.centre_um.y()), landing.weight);
+    std::sort(radii.begin(), radii.end());
+    const auto weighted_quantile = [&](const std::vector<std::pair<double, double>>& sorted, double fraction) {
+        double accumulated = 0.0;
+        for (const auto& [value, weight] : sorted) {
+            accumulated += weight;
+            if (accumulated >= fraction * total) return value;
+        }
+        return sorted.back().first;
+    };
+    const double median = weighted_quantile(radii, 0.5);
+    std::vector<std::pair<double, double>> deviations;
+    for (const auto& [radius, weight] : radii) deviations.emplace_back(std::abs(radius - median), weight);
+    std::sort(deviations.begin(), deviations.end());
+    const double spread = weighted_quantile(deviations, 0.5);
+    const std::size_t half_window = std::max<std::size_t>(1, static_cast<std::size_t>(0.25 * spread / bin));
+    const std::size_t separation = std::max<std::size_t>(2, static_cast<std::size_t>(spread / bin));
+    const std::vector<double> density = radial_density(landings, rings.centre_um, bin, bins, half_window);
+    // The bright rings: the highest maximum, and the highest one at least `separation` from it; the dark
+    // ring: the minimum between them.
+    const std::size_t first = static_cast<std::size_t>(std::max_element(density.begin(), density.end()) - density.begin());
+    std::size_t second = bins;
+    for (std::size_t i = 1; i + 1 < bins; ++i) {
+        const std::size_t distance = i > first ? i - first : first - i;
+        if (distance < separation || density[i] < density[i - 1] || density[i] < density[i + 1]) continue;
+        if (second == bins || density[i] > density[second]) second = i;
     }
-    if (peaks.size() < 2) return rings;
-    std::partial_sort(peaks.begin(), peaks.begin() + 2, peaks.end(), [&](std::size_t a, std::size_t b) { return density[a] > density[b]; });
-    const std::size_t inner = std::min(peaks[0], peaks[1]), outer = std::max(peaks[0], peaks[1]);
+    if (second == bins) return rings;
+    const std::size_t inner = std::min(first, second), outer = std::max(first, second);
     rings.inner_bright_um = (refined_extremum(density, inner, inner + 1, true) + 0.5) * bin;
     rings.outer_bright_um = (refined_extremum(density, outer, outer + 1, true) + 0.5) * bin;
     rings.dark_um = (refined_extremum(density, inner, outer + 1, false) + 0.5) * bin;
     return rings;
+}
+
+// The incident state, given by a Stokes vector in the lab frame (x, y), in the ray's own (s, p) basis of
+// docs/interface.md: ŝ = ẑ × k̂ normalised (ŷ at normal incidence), p̂ = ŝ × k̂. C_sp = T·C_xy·T† with
+// T's rows the transverse parts of ŝ and p̂.
+CoherencyMatrix ray_coherency(const Eigen::Vector4d& lab_stokes, const Eigen::Vector3d& k_hat) {
+    Eigen::Vector3d s_hat = Eigen::Vector3d::UnitZ().cross(k_hat);
+    s_hat = s_hat.norm() > 1e-15 ? Eigen::Vector3d(s_hat.normalized()) : Eigen::Vector3d::UnitY();
+    const Eigen::Vector3d p_hat = s_hat.cross(k_hat);
+    Eigen::Matrix2cd transform;
+    transform << s_hat.x(), s_hat.y(), p_hat.x(), p_hat.y();
+    // In the lab's (x, y) basis the Stokes convention of optics/polarization.hpp reads with (x, y) for (s, p).
+    const CoherencyMatrix lab = coherency_from_stokes(lab_stokes);
+    return transform * lab * transform.adjoint();
 }
 
 void validate(const ConicalRaySettings& s) {
@@ -159,7 +198,7 @@ ConicalRayResult trace_conical_rays(const ConicalRaySettings& settings, const st
             }
             InterfaceIncidence incidence;
             incidence.direction = direction;
-            incidence.coherency = coherency_from_stokes(settings.stokes);
+            incidence.coherency = ray_coherency(settings.stokes, direction);
             const InterfaceResult entry = solve_interface(normal, incidence, air, crystal);
             double entry_sum = 0.0;
             for (const InterfaceWave& wave : entry.waves) entry_sum += wave.power;

@@ -353,5 +353,34 @@ TEST_F(Cli, VerifyExitsNonZeroWhenACaseFails) {
     EXPECT_NE(run.out.find("FAIL  wrong"), std::string::npos) << run.out.substr(0, 500);
 }
 
+// ---- petroscope conical (issue 5) ----
+
+TEST_F(Cli, ConicalWritesTheRingAndItsNumbers) {
+    for (const std::string mode : {"wave", "ray"}) {
+        const fs::path image = out() / (mode + ".png");
+        const CommandResult run = petroscope("conical --crystal KGW --length 20mm --wavelength 633nm --mode " + mode +
+                                             " --filter 50mm --rays 20000 --size 128 -o " + quoted(image));
+        ASSERT_EQ(run.exit_code, 0) << run.err;
+        const nlohmann::json sidecar = nlohmann::json::parse(read_text(fs::path(image.string() + ".json")));
+        EXPECT_NEAR(sidecar["cone_angle_chi_deg"].get<double>(), 2.012, 1e-3);
+        EXPECT_NEAR(sidecar["A_rad"].get<double>() * 1000.0, 17.57, 5e-3);
+        EXPECT_NEAR(sidecar["R0_um"].get<double>(), 351.35, 0.05);
+        for (const char* key : {"outer_bright", "dark", "inner_bright"}) EXPECT_TRUE(sidecar["rings"].contains(key)) << key;
+        EXPECT_TRUE(fs::exists(image));
+    }
+}
+
+TEST_F(Cli, ConicalRejectsBadInput) {
+    const std::string output = " -o " + quoted(out() / "ring.png");
+    expect_rejected("conical --crystal calcite" + output, {"calcite", "biaxial"});
+    expect_rejected("conical --length 0mm" + output, {"--length"});
+    expect_rejected("conical --length -5mm" + output, {"--length"});
+    expect_rejected("conical --waist 0um" + output, {"--waist"});
+    expect_rejected("conical --mode ray --screen-distance -1mm" + output, {"--screen-distance"});
+    expect_rejected("conical --mode ray --pinhole 30mm --length 20mm" + output, {"pinhole", "larger than the slab"});
+    expect_rejected("conical --polarization sideways" + output, {"--polarization"});
+    expect_rejected("conical --mode particle" + output, {"--mode"});
+}
+
 }  // namespace
 }  // namespace petroscope

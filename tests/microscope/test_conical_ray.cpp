@@ -2,6 +2,7 @@
 // its rotation with the crystal, and power conservation on and near the optic axis.
 #include "petroscope/core/error.hpp"
 #include "petroscope/microscope/conical_ray.hpp"
+#include "petroscope/microscope/conical_wave.hpp"
 
 #include <gtest/gtest.h>
 
@@ -79,6 +80,35 @@ TEST(ConicalRay, RaysExactlyAlongTheOpticAxisConservePowerAndStayFinite) {
     const ConicalRayResult near = trace_conical_rays(settings);
     EXPECT_LE(near.max_interface_power_sum, 1.0 + 1e-12);
     EXPECT_EQ(near.non_finite, 0);
+}
+
+TEST(ConicalRay, WaveAndRayOpticsAgreeInTheGeometricLimit) {
+    // A Gaussian beam E = exp(−r²/2w²) focused on the entrance face has the angular intensity
+    // exp(−k₀²w²θ²): per axis σ_θ = 1/(√2 k₀ w). Its ray equivalent is a point source with those angles;
+    // the screen at D lies Z = (D + l/nβ)/(k₀w²) from the focal image plane (physics notes §7). ρ₀/Z =
+    // A nβ k₀ w does not depend on l, and the wave theory's inner ring reaches its ray position only as
+    // Z^(−1/4) (at larger Z, fringes appear inside it): w = 40 µm, l = 800 mm, D = 1 mm give ρ₀ = 351,
+    // Z = 25 (ρ₀/Z = 14), a numerical regime rather than a practical crystal.
+    const Eigen::Vector3d n(2.0135, 2.0458, 2.0860);
+    const double wavelength_um = 0.633, k0 = 2.0 * M_PI / wavelength_um, w = 40.0, l = 800000.0, d_screen = 1000.0;
+    ConicalRaySettings rays;
+    rays.principal_n = n;
+    rays.slab_um = l;
+    rays.source = ConicalRaySettings::Source::point;
+    rays.angular_width_rad = 1.0 / (std::sqrt(2.0) * k0 * w);
+    rays.screen_distance_um = d_screen;
+    rays.rays = 200000;
+    rays.size_px = 128;
+    const ConicalRayResult traced = trace_conical_rays(rays);
+
+    ConicalWaveParameters wave;
+    wave.rho0 = traced.ring_radius_um / w;
+    wave.z = (d_screen + l / n[1]) / (k0 * w * w);
+    const ConicalRings rings = conical_rings(conical_profile(wave, wave.rho0 + 4.0 + 1.5 * wave.z, 8000), wave.rho0);
+    std::printf("geometric limit (rho0 = %.1f, Z = %.1f): rings wave %.1f / %.1f um, ray %.1f / %.1f um\n", wave.rho0, wave.z,
+                rings.inner_bright * w, rings.outer_bright * w, traced.rings.inner_bright_um, traced.rings.outer_bright_um);
+    EXPECT_NEAR(traced.rings.inner_bright_um / (rings.inner_bright * w), 1.0, 0.02);
+    EXPECT_NEAR(traced.rings.outer_bright_um / (rings.outer_bright * w), 1.0, 0.02);
 }
 
 TEST(ConicalRay, BadInputIsRejected) {

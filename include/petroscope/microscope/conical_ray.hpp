@@ -23,7 +23,9 @@ struct ConicalRaySettings {
     double filter_um = 1000.0;         // h: rays through both openings, tilted by at most about 2R/h
     double angular_width_rad = 0.0;    // point source: per-axis standard deviation of the ray angles in air
     double screen_distance_um = 50000.0;  // D, from the exit face
-    Eigen::Vector4d stokes = Eigen::Vector4d(1, 0, 0, 0);  // incident polarization (unpolarized)
+    /// Incident polarization as a Stokes vector in the lab frame with (x, y) in the roles of (s, p) of
+    /// optics/polarization.hpp: S1 = +S0 for light polarized along x. Default unpolarized.
+    Eigen::Vector4d stokes = Eigen::Vector4d(1, 0, 0, 0);
     std::int64_t rays = 200000;
     std::uint64_t seed = 1;
     int size_px = 512;                 // square screen image

@@ -47,7 +47,8 @@ struct ConicalProfile {
 /// composite 10-point Gauss–Legendre quadrature on panels of one period of the fastest oscillation
 /// (absolute error below 1e-12). Cost ∝ samples × (ρ₀ + rho_max + |Z|P_max/2)·P_max with P_max = 9
 /// (Gaussian) or 9/σ (pinhole). Parallel over the samples (OpenMP). Throws InputError for ρ₀ < 0,
-/// rho_max ≤ 0, samples < 2 or non-finite values.
+/// rho_max ≤ 0, samples < 2, non-finite values, or more than 1e6 nodes (|Z| ≳ 1.5e4 for the Gaussian,
+/// ≳ 35 for the pinhole).
 ConicalProfile conical_profile(const ConicalWaveParameters& parameters, double rho_max, int samples);
 
 /// Intensity for incident Stokes vector (S0, S1, S2, S3) at (ρ, φ), φ from +x (the direction of the ring
