@@ -22,6 +22,9 @@ void show_progress(const std::string& label, double fraction_done);
 class ImageResult {
 public:
     explicit ImageResult(const std::filesystem::path& output);
+    /// Reserves one more file (a CSV beside the image) to be committed with the image; returns the
+    /// temporary path to write it to before write().
+    std::filesystem::path add_companion(const std::filesystem::path& destination) { return pending_.add(destination); }
     void write(const Image& linear_rgb, const nlohmann::json& sidecar);
     const std::filesystem::path& path() const { return output_; }
 
@@ -55,5 +58,8 @@ void add_conoscope_command(CLI::App& app, const std::string& minerals_dir, const
 void add_interface_command(CLI::App& app, const std::string& minerals_dir);
 void add_verify_command(CLI::App& app, const std::string& minerals_dir);
 void add_conical_command(CLI::App& app, const std::string& minerals_dir, const std::string& command_line);
+void add_section_command(CLI::App& app, const std::string& minerals_dir);
+void add_chart_command(CLI::App& app, const std::string& minerals_dir, const std::string& command_line);
+void add_orthoscope_command(CLI::App& app, const std::string& minerals_dir, const std::string& command_line);
 
 }  // namespace petroscope::cli

@@ -37,6 +37,9 @@ struct ConoscopeOptions {
     double analyzer_deg = 90.0;
     bool no_analyzer = false;
     double surround_n = 1.54;
+    std::string plate;
+    double plate_deg = 45.0;
+    double wedge_position = 0.5;
     std::string output;
 };
 
@@ -82,6 +85,12 @@ void run_conoscope(const ConoscopeOptions& options, const std::string& minerals_
 
     const MineralCatalog catalog = load_mineral_catalog(minerals_directory(minerals_dir));
     const Mineral& mineral = catalog.find(options.mineral);
+    if (!options.plate.empty()) {
+        const PlateKind kind = with_option("--plate", [&] { return parse_plate(options.plate); });
+        settings.plate = with_option("--plate", [&] {
+            return make_accessory_plate(kind, catalog.find(plate_mineral_name(kind)), options.plate_deg, options.wedge_position);
+        });
+    }
     if (mineral.absorbing()) {
         std::cerr << "petroscope: note: " << mineral.name
                   << " absorbs (pleochroism); the conoscope uses its refractive indices only, absorption is left out\n";
@@ -142,6 +151,9 @@ void run_conoscope(const ConoscopeOptions& options, const std::string& minerals_
         {"analyzer_in", settings.analyzer_in},
         {"numerical_aperture", settings.numerical_aperture},
         {"surround_n", settings.surround_n},
+        {"plate", settings.plate ? nlohmann::json{{"kind", plate_name(settings.plate->kind)}, {"thickness_um", settings.plate->thickness_um},
+                                                  {"slow_deg", settings.plate->slow_deg}, {"description", settings.plate->description}}
+                                 : nlohmann::json(nullptr)},
         {"size_px", settings.size_px},
         {"exposure", options.exposure},
         {"light", light},
@@ -187,6 +199,9 @@ void add_conoscope_command(CLI::App& app, const std::string& minerals_dir, const
     command->add_option("--polarizer-deg", options->polarizer_deg, "Polarizer direction, degrees from E toward N")->capture_default_str();
     auto* analyzer = command->add_option("--analyzer-deg", options->analyzer_deg, "Analyzer direction, degrees from E toward N")->capture_default_str();
     command->add_flag("--no-analyzer", options->no_analyzer, "Take the analyzer out (plane-polarized light)")->excludes(analyzer);
+    command->add_option("--plate", options->plate, "Accessory plate: gypsum (first-order red), mica (quarter wave), wedge (quartz wedge)");
+    command->add_option("--plate-deg", options->plate_deg, "The plate's slow direction, degrees from E toward N (45: NE-SW)")->capture_default_str();
+    command->add_option("--wedge-position", options->wedge_position, "How far the quartz wedge is pushed in, 0 to 1 (0 to 4 orders)")->capture_default_str();
     command->add_option("--surround-n", options->surround_n, "Index of the mounting medium on both faces (Canada balsam ~1.54)")->capture_default_str();
     command->add_option("-o,--output", options->output, "Output image: .png (sRGB, for viewing), .exr or .tif (float); a JSON sidecar <output>.json is written beside it")->required();
     command->callback([options, &minerals_dir, command_line] { run_conoscope(*options, minerals_dir, command_line); });

@@ -31,6 +31,9 @@ int main(int argc, char** argv) {
     petroscope::cli::add_interface_command(app, minerals_dir);
     petroscope::cli::add_verify_command(app, minerals_dir);
     petroscope::cli::add_conical_command(app, minerals_dir, command_line);
+    petroscope::cli::add_section_command(app, minerals_dir);
+    petroscope::cli::add_orthoscope_command(app, minerals_dir, command_line);
+    petroscope::cli::add_chart_command(app, minerals_dir, command_line);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -62,11 +62,22 @@ ConoscopeEvaluator::ConoscopeEvaluator(const ConoscopeSettings& settings, const 
       k0_thickness_(k0_thickness_for(settings)),
       spectral_samples_(samples_of(frames_, k0_thickness_, settings.surround_n, 1)) {
     if (frames_.size() == 1) monochromatic_samples_ = samples_of(frames_, k0_thickness_, settings.surround_n, kMonochromaticBatch);
+    if (settings.plate) {
+        for (const double wavelength_nm : settings.wavelengths_nm) plate_jones_lab_.push_back(plate_jones_lab(*settings.plate, wavelength_nm, false));
+    }
 }
 
 void ConoscopeEvaluator::spectral_pair(const Eigen::Vector2d& xi, KernelScratch& scratch, bool continues_row,
                                        double* out_plus, double* out_minus) const {
     const std::size_t count = spectral_samples_.size();
+    if (!plate_jones_lab_.empty()) {  // the vectorised kernel knows real analyzers only
+        for (std::size_t w = 0; w < count; ++w) {
+            const std::array<double, 2> reference = reference_pair(w, xi);
+            out_plus[w] = reference[0];
+            out_minus[w] = reference[1];
+        }
+        return;
+    }
     if (scratch.failed.size() != spectral_samples_.padded_size()) {
         scratch.resize(spectral_samples_.padded_size());
         scratch.warm_ready = false;
@@ -91,6 +102,14 @@ void ConoscopeEvaluator::spectral_pair(const Eigen::Vector2d& xi, KernelScratch&
 void ConoscopeEvaluator::monochromatic_pairs(const std::vector<Eigen::Vector2d>& xis, KernelScratch& scratch,
                                              double* out_plus, double* out_minus) const {
     if (xis.empty()) return;
+    if (!plate_jones_lab_.empty()) {
+        for (std::size_t k = 0; k < xis.size(); ++k) {
+            const std::array<double, 2> reference = reference_pair(0, xis[k]);
+            out_plus[k] = reference[0];
+            out_minus[k] = reference[1];
+        }
+        return;
+    }
     // A shorter batch uses the first samples; the rest of the arrays repeat its last direction.
     const SampleCrystal& samples = *monochromatic_samples_;
     if (scratch.failed.size() != samples.padded_size()) scratch.resize(samples.padded_size());
@@ -123,7 +142,8 @@ std::array<double, 2> ConoscopeEvaluator::reference_pair(std::size_t w, const Ei
         modes.forward = forward[side];
         for (int sheet = 0; sheet < 2; ++sheet) modes.backward[sheet] = time_reversed(forward[1 - side][sheet]);
         const SlabTransfer transfer = slab_transfer(modes, directions[side], settings_.surround_n, settings_.surround_n);
-        result[side] = analyzed_intensity(transfer, directions[side], k0_thickness_[w]);
+        result[side] = plate_jones_lab_.empty() ? analyzed_intensity(transfer, directions[side], k0_thickness_[w])
+                                                : analyzed_intensity_with_plate(transfer, directions[side], k0_thickness_[w], w);
     }
     return result;
 }
@@ -145,6 +165,20 @@ double ConoscopeEvaluator::analyzed_intensity(const SlabTransfer& transfer, cons
     }
     return intensity(transfer.exit.row(0).transpose().cwiseProduct(mode_amplitudes)) +
            intensity(transfer.exit.row(1).transpose().cwiseProduct(mode_amplitudes));
+}
+
+double ConoscopeEvaluator::analyzed_intensity_with_plate(const SlabTransfer& transfer, const TangentialWavevector& direction,
+                                                         double k0_thickness, std::size_t w) const {
+    const Eigen::Vector2d incident(polars_.polarizer.dot(direction.azimuthal), polars_.polarizer.dot(direction.radial));
+    const std::complex<double> i(0.0, 1.0);
+    const Eigen::Vector2cd modes = (transfer.entry * incident).cast<std::complex<double>>().cwiseProduct(
+        Eigen::Vector2cd(std::exp(i * k0_thickness * transfer.q[0]), std::exp(i * k0_thickness * transfer.q[1])));
+    const Eigen::Vector2cd out_sp = transfer.exit.cast<std::complex<double>>() * modes;
+    const Eigen::Vector2cd lab = direction.azimuthal.cast<std::complex<double>>() * out_sp[0] +
+                                 direction.radial.cast<std::complex<double>>() * out_sp[1];
+    const Eigen::Vector2cd after_plate = plate_jones_lab_[w] * lab;
+    if (!polars_.analyzer_in) return after_plate.squaredNorm();
+    return std::norm(polars_.analyzer.cast<std::complex<double>>().dot(after_plate));
 }
 
 }  // namespace petroscope::detail

@@ -34,6 +34,10 @@ public:
 
 private:
     double analyzed_intensity(const SlabTransfer& transfer, const TangentialWavevector& direction, double k0_thickness) const;
+    /// With an accessory plate: the field leaves the slab as a_s·ŝ + a_p·ρ̂, crosses the plate (lab Jones
+    /// matrix of wavelength `w`), then the analyzer.
+    double analyzed_intensity_with_plate(const SlabTransfer& transfer, const TangentialWavevector& direction,
+                                         double k0_thickness, std::size_t w) const;
 
     const ConoscopeSettings& settings_;
     PolarizerPair polars_;
@@ -41,6 +45,7 @@ private:
     std::vector<double> k0_thickness_;
     SampleCrystal spectral_samples_;                     // one sample per wavelength
     std::optional<SampleCrystal> monochromatic_samples_;  // the single wavelength, kMonochromaticBatch times
+    std::vector<Eigen::Matrix2cd> plate_jones_lab_;       // per wavelength; empty without a plate
 };
 
 }  // namespace petroscope::detail

@@ -102,7 +102,8 @@ private:
 const std::set<std::string> kMineralNames{
     "quartz", "calcite", "muscovite", "biotite", "forsterite", "fayalite", "augite", "hornblende", "albite",
     "anorthite", "orthoclase", "almandine", "aragonite", "gypsum", "topaz", "zircon", "tourmaline", "apatite",
-    "kyanite", "sillimanite", "sapphire", "rutile", "KTP", "LBO", "KGd(WO4)2", "BBO", "LiNbO3", "YVO4", "KY(WO4)2"};
+    "kyanite", "sillimanite", "sapphire", "rutile", "KTP", "LBO", "KGd(WO4)2", "BBO", "LiNbO3", "YVO4", "KY(WO4)2",
+    "labradorite", "basaltic glass", "canada balsam", "crown glass"};
 
 TEST_F(Cli, MineralsListsEveryShippedMineral) {
     const CommandResult run = petroscope("minerals");
@@ -116,9 +117,11 @@ TEST_F(Cli, MineralsListsEveryShippedMineral) {
     while (std::getline(lines, line)) {
         if (line.empty()) continue;
         ++rows;
-        listed.insert(line.substr(0, line.find(' ')));
+        std::string name = line.substr(0, 14);  // the name column is 14 wide ("%-14s "); names may hold spaces
+        name.erase(name.find_last_not_of(' ') + 1);
+        listed.insert(name);
     }
-    EXPECT_EQ(rows, 29);
+    EXPECT_EQ(rows, 33);
     EXPECT_EQ(listed, kMineralNames);
 }
 
@@ -380,6 +383,72 @@ TEST_F(Cli, ConicalRejectsBadInput) {
     expect_rejected("conical --mode ray --pinhole 30mm --length 20mm" + output, {"pinhole", "larger than the slab"});
     expect_rejected("conical --polarization sideways" + output, {"--polarization"});
     expect_rejected("conical --mode particle" + output, {"--mode"});
+}
+
+}  // namespace
+}  // namespace petroscope
+
+namespace petroscope {
+namespace {
+
+const std::string kGranite = quoted(fs::path(PETROSCOPE_SOURCE_DIR) / "thin_sections" / "granite");
+
+TEST_F(Cli, OrthoscopeWritesImageAndSidecar) {
+    const fs::path png = out() / "granite.png";
+    const CommandResult run = petroscope("orthoscope --section " + kGranite + " --stage-deg 30 --plate gypsum --wavelengths 400:700:10 -o " + quoted(png));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_EQ(listing(out()), (std::set<std::string>{"granite.png", "granite.png.json"}));
+    const nlohmann::json sidecar = nlohmann::json::parse(read_text(out() / "granite.png.json"));
+    EXPECT_EQ(sidecar["command"], "orthoscope");
+    EXPECT_EQ(sidecar["stage_deg"].get<double>(), 30.0);
+    EXPECT_EQ(sidecar["plate"]["kind"], "gypsum");
+    EXPECT_EQ(sidecar["plate"]["slow_deg"].get<double>(), 45.0);
+    EXPECT_EQ(sidecar["view"], "crossed polars");
+    EXPECT_EQ(sidecar["light"]["wavelengths_nm"]["count"].get<int>(), 31);
+    const Image image = read_image(png);
+    EXPECT_EQ(image.width, sidecar["section"]["size_px"][0].get<int>());
+    EXPECT_EQ(image.height, sidecar["section"]["size_px"][1].get<int>());
+}
+
+TEST_F(Cli, OrthoscopeRejectsBadInputAndLeavesNoFiles) {
+    const std::string png = quoted(out() / "x.png");
+    expect_rejected("orthoscope --section " + quoted(scratch() / "missing") + " -o " + png, {"missing"});
+    expect_rejected("orthoscope --section " + kGranite + " --plate lambda -o " + png, {"--plate", "gypsum, mica or wedge"});
+    expect_rejected("orthoscope --section " + kGranite + " --plate wedge --wedge-position 1.5 -o " + png, {"wedge position", "0 to 1"});
+    expect_rejected("orthoscope --section " + kGranite + " --condenser-na 1.2 -o " + png, {"condenser NA", "0 <= NA < 1"});
+    expect_rejected("orthoscope --section " + kGranite + " --thickness 30 -o " + png, {"--thickness"});
+    expect_rejected("orthoscope --section " + kGranite + " --ppl --xpl -o " + png, {"excludes"});
+    expect_rejected("orthoscope --section " + kGranite + " -o " + quoted(out() / "x.jpg"), {"x.jpg"});
+}
+
+// The chart's CSV: one row per retardation step, black at Γ = 0, first-order red near 550 nm (the least
+// luminous colour of the first order's end).
+TEST_F(Cli, ChartWritesImageCsvAndSidecar) {
+    const fs::path png = out() / "chart.png", csv = out() / "chart.csv";
+    const CommandResult run = petroscope("chart --max-retardation 1000 --step 5 --csv " + quoted(csv) + " -o " + quoted(png));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_EQ(listing(out()), (std::set<std::string>{"chart.png", "chart.png.json", "chart.csv"}));
+    std::istringstream lines(read_text(csv));
+    std::string line;
+    std::getline(lines, line);
+    EXPECT_EQ(line, "retardation_nm,thickness_um,X,Y,Z,x,y,sR,sG,sB,sR8,sG8,sB8");
+    std::vector<std::pair<double, double>> luminance;  // (Γ, Y)
+    while (std::getline(lines, line)) {
+        std::istringstream fields(line);
+        std::string gamma, thickness, x, y;
+        std::getline(fields, gamma, ',');
+        std::getline(fields, thickness, ',');
+        std::getline(fields, x, ',');
+        std::getline(fields, y, ',');
+        luminance.emplace_back(std::stod(gamma), std::stod(y));
+    }
+    ASSERT_EQ(luminance.size(), 201u);
+    EXPECT_LT(luminance[0].second, 1e-6);
+    const auto darkest = std::min_element(luminance.begin() + 60, luminance.begin() + 140,
+                                          [](const auto& a, const auto& b) { return a.second < b.second; });
+    EXPECT_NEAR(darkest->first, 550.0, 40.0);
+    expect_rejected("chart --step 0 -o " + quoted(out() / "bad.png"), {"retardation step"});
+    expect_rejected("chart --mineral almandine -o " + quoted(out() / "bad.png"), {"isotropic"});
 }
 
 }  // namespace

@@ -2,11 +2,14 @@
 // Conoscopic interference figures: the image in the back focal plane of the objective, seen through the
 // Bertrand lens, of a crystal slab between polarizer and analyzer.
 #include "petroscope/core/image.hpp"
+#include "petroscope/core/progress.hpp"
+#include "petroscope/microscope/polarizing_microscope.hpp"
 #include "petroscope/spectral/colorimetry.hpp"
 
 #include <Eigen/Core>
 
 #include <functional>
+#include <optional>
 #include <vector>
 
 namespace petroscope {
@@ -22,6 +25,9 @@ struct ConoscopeSettings {
     double stage_deg = 0.0;             // stage rotation, counter-clockwise seen from the observer
     Eigen::Matrix3d crystal_axes = Eigen::Matrix3d::Identity();  // indicatrix X, Y, Z (columns) at stage 0
     std::vector<double> wavelengths_nm{589.3};
+    /// An accessory plate in the tube, crossed at normal incidence by the light of every image point (the same
+    /// retardation over the figure). With a plate every sample goes through the reference path (slower).
+    std::optional<AccessoryPlate> plate;
 
     /// Checks every field; throws InputError naming the setting and the accepted range.
     void validate() const;
@@ -29,8 +35,6 @@ struct ConoscopeSettings {
 
 /// Principal indices along the indicatrix axes X, Y, Z at a wavelength (the mineral's dispersion).
 using PrincipalIndexFunction = std::function<Eigen::Vector3d(double wavelength_nm)>;
-/// Called now and then from the rendering thread with the fraction done (0 … 1).
-using ProgressCallback = std::function<void(double fraction_done)>;
 
 /// The lab-frame direction of the wave that reaches image point (x, y) ∈ [−1, 1]² (x to the E, y to the
 /// N): tangential wavevector ξ = NA·(x, y) in units of k₀ (sin θ_air = NA·r).

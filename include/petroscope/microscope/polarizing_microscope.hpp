@@ -1,0 +1,156 @@
+#pragma once
+// The polarizing microscope's optical train as one object, for orthoscopy (and the Michel-Lévy chart):
+// polarizer, condenser cone, the section (slide glass, balsam, crystal, balsam, cover glass), an accessory
+// plate, analyzer. Each element between air gaps is one layer stack (layer_stack.hpp); the elements are
+// incoherent with each other. Frames and angle senses: docs/conventions.md; the model: docs/orthoscope.md.
+#include "petroscope/microscope/layer_stack.hpp"
+#include "petroscope/minerals/mineral.hpp"
+
+#include <Eigen/Core>
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace petroscope {
+
+/// Principal indices (or extinction coefficients) along the indicatrix axes X, Y, Z at a wavelength in nm.
+using PrincipalFunction = std::function<Eigen::Vector3d(double wavelength_nm)>;
+
+/// A homogeneous medium: principal n and κ and the indicatrix axes (columns, lab frame).
+struct OpticalMedium {
+    PrincipalFunction principal_n;
+    PrincipalFunction principal_kappa;  // empty: transparent
+    Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();
+
+    static OpticalMedium of(const Mineral& mineral, const Eigen::Matrix3d& axes = Eigen::Matrix3d::Identity());
+    Eigen::Matrix3cd permittivity(double wavelength_nm) const;
+};
+
+/// Glass and cement around the crystal, from the condenser side up (typical thin section: 1 mm slide,
+/// a few µm of balsam on each face of the rock slice, a #1.5 cover glass of 170 µm).
+struct SectionMounting {
+    OpticalMedium slide, cement, cover;
+    double slide_um = 1000.0, lower_cement_um = 5.0, upper_cement_um = 5.0, cover_um = 170.0;
+};
+
+enum class PlateKind { gypsum, mica, wedge };
+std::string_view plate_name(PlateKind kind);
+PlateKind parse_plate(std::string_view name);  // "gypsum", "mica", "wedge"; throws InputError listing them
+/// The catalog name of the mineral each plate is cut from: gypsum, muscovite, quartz.
+std::string_view plate_mineral_name(PlateKind kind);
+
+/// An accessory plate: a real crystal plate in the tube, in air, crossed at normal incidence (the same
+/// retardation over the whole field). Its slow vibration direction lies at `slow_deg` from E toward N.
+struct AccessoryPlate {
+    PlateKind kind = PlateKind::gypsum;
+    OpticalMedium medium;  // axes already set: slow direction in the plane at slow_deg
+    double thickness_um = 0.0;
+    double slow_deg = 45.0;
+    std::string description;  // e.g. "gypsum (010) cleavage plate, 56.1 µm, Γ = 550 nm at 550 nm"
+};
+
+/// The standard plates, cut from the catalog's minerals:
+/// - gypsum: a (010) cleavage flake (normal = Y), slow Z, thick enough for Γ = 550 nm at 550 nm (first-order red);
+/// - mica: a muscovite (001) cleavage flake (normal ≈ X), slow Z, Γ = λ/4 at 589.3 nm (147.3 nm);
+/// - wedge: quartz with c in the plane (slow, quartz is positive), 0 to 4 orders (Γ 0 … 2200 nm at 550 nm)
+///   along its length; `wedge_position` ∈ [0, 1] says how far it is pushed in.
+/// Throws InputError when a required mineral or a wedge position is out of range.
+AccessoryPlate make_accessory_plate(PlateKind kind, const Mineral& plate_mineral, double slow_deg, double wedge_position = 0.5);
+
+/// The plate's Jones matrix at normal incidence in the lab (x, y) frame, single pass or coherent (`exact`).
+Eigen::Matrix2cd plate_jones_lab(const AccessoryPlate& plate, double wavelength_nm, bool exact);
+
+/// Polarizer, analyzer and stage.
+struct Polars {
+    double polarizer_deg = 0.0;  // transmission direction, from E toward N
+    double analyzer_deg = 90.0;
+    bool analyzer_in = true;
+};
+
+/// Directions of the illuminating plane waves: Köhler illumination with the condenser aperture filled
+/// uniformly (uniform in ξ over the disc |ξ| ≤ NA), sampled on `rings` rings of 6k points plus the axis
+/// (equal weights up to the centre cell's). NA 0 gives the axial wave alone (parallel light).
+struct IlluminationSample {
+    Eigen::Vector2d xi = Eigen::Vector2d::Zero();
+    double weight = 1.0;  // Σ weights = 1
+};
+std::vector<IlluminationSample> condenser_samples(double condenser_na, int rings);
+/// Rings enough for a smooth cone: ⌈NA / 0.05⌉ (61 directions at NA 0.2).
+int default_condenser_rings(double condenser_na);
+
+struct MicroscopeSettings {
+    Polars polars;
+    double stage_deg = 0.0;
+    double condenser_na = 0.0;
+    int condenser_rings = 0;  // 0: default_condenser_rings
+    std::optional<AccessoryPlate> plate;
+    bool exact = false;  // coherent 4×4 per element instead of single pass
+    std::vector<double> wavelengths_nm{589.3};
+};
+
+/// Everything of the microscope that does not depend on the grain, per wavelength and illumination direction:
+/// the light from the polarizer up to the crystal's lower face (as forward waves of the cement), and from the
+/// crystal's upper face through cement, cover glass, plate and analyzer to the eye. Built once per render.
+class MicroscopeOptics {
+public:
+    MicroscopeOptics(const MicroscopeSettings& settings, const SectionMounting& mounting);
+
+    const MicroscopeSettings& settings() const { return settings_; }
+    const SectionMounting& mounting() const { return mounting_; }
+    const std::vector<IlluminationSample>& directions() const { return directions_; }
+
+    struct Path {  // one wavelength, one direction (single pass)
+        MediumWaves cement;                 // the cement's waves on both faces of the crystal
+        Eigen::Vector2cd into_crystal;      // the cement's forward-wave amplitudes at the crystal's lower face
+        Eigen::Matrix2cd to_eye;            // cement forward waves at the crystal's upper face → analyzed field
+        double k0_per_um = 0.0;
+    };
+    /// Single pass only (empty in exact mode): [wavelength][direction].
+    const Path& path(std::size_t wavelength, std::size_t direction) const {
+        return paths_[wavelength * directions_.size() + direction];
+    }
+    /// Exact mode: the analyzed intensity for the section's coherent Jones matrix (s, p bases of the air).
+    double analyzed_intensity(const Eigen::Matrix2cd& section_jones_sp, std::size_t wavelength, std::size_t direction) const;
+    /// The section's layers at a wavelength, the crystal (index 2) with `crystal` and `crystal_thickness_um`.
+    std::vector<OpticalLayer> section_layers(double wavelength_nm, const Eigen::Matrix3cd& crystal, double crystal_thickness_um) const;
+
+private:
+    const MicroscopeSettings& settings_;
+    const SectionMounting& mounting_;
+    std::vector<IlluminationSample> directions_;
+    std::vector<Eigen::Matrix2cd> plate_jones_lab_;  // per wavelength, lab (x, y) frame
+    std::vector<Path> paths_;
+
+    /// Rows taking the transmitted (s, p) amplitudes in the air above the section to what the eye receives:
+    /// through the plate, then onto the analyzer (first row; second zero) or both lab components (no analyzer).
+    Eigen::Matrix2cd after_section(std::size_t wavelength, const Eigen::Vector2d& xi) const;
+    /// The polarizer's field in the (s, p) basis of the direction (an aplanatic condenser keeps s and p).
+    Eigen::Vector2cd incident(const Eigen::Vector2d& xi) const;
+};
+
+/// The analyzed transmission of one crystal (a grain) in its mounting as a function of its thickness:
+/// intensity after the analyzer (or behind the stage without it) relative to the light after the polarizer,
+/// per wavelength, averaged over the condenser's directions. The crystal's axes are given at stage 0; the
+/// stage turns them. Single pass: the per-wave split is computed once, any thickness is then cheap; exact:
+/// the coherent Jones matrix is computed for each thickness asked for. `optics` must outlive the response.
+class GrainResponse {
+public:
+    GrainResponse(const MicroscopeOptics& optics, const OpticalMedium& crystal);
+    /// Transmission per wavelength of the settings, written to `out`.
+    void transmission(double thickness_um, std::vector<double>& out) const;
+
+private:
+    struct Sample {  // one direction at one wavelength: the analyzed field is Σₘ amplitude[m]·exp(i·phase[m]·d)
+        std::array<Eigen::Vector2cd, 2> amplitude;
+        std::array<std::complex<double>, 2> phase_per_um;
+        double weight = 0.0;
+        bool propagating = true;
+    };
+    const MicroscopeOptics& optics_;
+    OpticalMedium crystal_;
+    std::vector<Sample> samples_;  // single pass: [wavelength][direction]
+};
+
+}  // namespace petroscope

@@ -1,0 +1,179 @@
+#include "petroscope/microscope/orthoscope.hpp"
+
+#include "petroscope/core/error.hpp"
+#include "petroscope/core/text.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace petroscope {
+namespace {
+
+/// Thickness steps of a grain's table: at most 1 nm of retardation apart, and no more than this many.
+constexpr double kRetardationStepUm = 1e-3;
+constexpr int kMaxTableEntries = 1 << 16;
+
+/// The grain of each output pixel (index into section.grains, or grains.size() outside the section) and
+/// its thickness, with the stage turned: the output pixel q shows the section point R(−stage)·q. A section
+/// of uniform thickness has no per-pixel thickness (each grain has one: its own or the section's).
+struct PixelGrains {
+    std::vector<int> grain;
+    std::vector<float> thickness_um;  // empty for a uniform section
+};
+
+PixelGrains pixel_grains(const ThinSection& section, double stage_deg) {
+    const int width = section.width_px, height = section.height_px;
+    const std::size_t count = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+    const bool per_pixel = section.thickness_kind != ThicknessKind::uniform;
+    PixelGrains result{std::vector<int>(count), std::vector<float>(per_pixel ? count : 0)};
+    const int outside = static_cast<int>(section.grains.size());
+    const double angle = stage_deg * std::numbers::pi / 180.0;
+    const double c = std::cos(angle), s = std::sin(angle);
+    const double cx = 0.5 * width, cy = 0.5 * height;
+#pragma omp parallel for schedule(static)
+    for (int row = 0; row < height; ++row) {
+        for (int column = 0; column < width; ++column) {
+            // Image coordinates: x to the E, y to the N (rows go down).
+            const double x = column + 0.5 - cx, y = cy - (row + 0.5);
+            const double source_x = c * x + s * y, source_y = -s * x + c * y;
+            const int sx = static_cast<int>(std::floor(source_x + cx));
+            const int sy = static_cast<int>(std::floor(cy - source_y));
+            const std::size_t index = static_cast<std::size_t>(row) * width + column;
+            if (sx < 0 || sy < 0 || sx >= width || sy >= height) {
+                result.grain[index] = outside;
+                if (per_pixel) result.thickness_um[index] = static_cast<float>(section.section_thickness_at(width / 2, height / 2));
+                continue;
+            }
+            const int grain = section.grain_index_of_label[section.labels[static_cast<std::size_t>(sy) * width + sx]];
+            result.grain[index] = grain;
+            if (per_pixel) result.thickness_um[index] = static_cast<float>(section.thickness_at(sx, sy, section.grains[grain]));
+        }
+    }
+    return result;
+}
+
+/// One grain's appearance over the thicknesses it takes: `channels` values per entry, entry k at
+/// thickness first_um + k·step_um.
+struct GrainTable {
+    double first_um = 0.0, step_um = 0.0;
+    int entries = 1;
+    std::vector<float> values;
+};
+
+double largest_birefringence(const OpticalMedium& medium, double wavelength_nm) {
+    const Eigen::Vector3d n = medium.principal_n(wavelength_nm);
+    return n.maxCoeff() - n.minCoeff();
+}
+
+}  // namespace
+
+void OrthoscopeSettings::validate() const {
+    const MicroscopeSettings& m = microscope;
+    for (const double angle : {m.polars.polarizer_deg, m.polars.analyzer_deg, m.stage_deg}) {
+        if (!std::isfinite(angle)) throw InputError("angles must be finite numbers of degrees");
+    }
+    if (!(m.condenser_na >= 0.0 && m.condenser_na < 1.0)) {
+        throw InputError("condenser NA " + format_number(m.condenser_na) + " is out of range (expected 0 <= NA < 1)");
+    }
+    if (m.wavelengths_nm.empty()) throw InputError("no wavelengths to evaluate");
+    for (const double wavelength : m.wavelengths_nm) {
+        if (!(wavelength > 0.0) || !std::isfinite(wavelength)) throw InputError("wavelengths must be positive numbers of nanometres");
+    }
+    for (const double thickness : {mounting.slide_um, mounting.lower_cement_um, mounting.upper_cement_um, mounting.cover_um}) {
+        if (!(thickness >= 0.0) || !std::isfinite(thickness)) throw InputError("mounting layer thicknesses must be finite and >= 0");
+    }
+}
+
+SectionMounting standard_mounting(const MineralCatalog& catalog) {
+    SectionMounting mounting;
+    mounting.slide = OpticalMedium::of(catalog.find("crown glass"));
+    mounting.cover = mounting.slide;
+    mounting.cement = OpticalMedium::of(catalog.find("canada balsam"));
+    return mounting;
+}
+
+Image render_orthoscope(const ThinSection& section, const MineralCatalog& catalog, const OrthoscopeSettings& settings,
+                        const SpectralIntegrator* integrator, const ProgressCallback& progress) {
+    settings.validate();
+    const std::vector<double>& wavelengths = settings.microscope.wavelengths_nm;
+    if (integrator == nullptr && wavelengths.size() != 1) throw InputError("a monochromatic image needs exactly one wavelength");
+    if (integrator != nullptr && integrator->weights().size() != wavelengths.size()) {
+        throw InputError("the colour integrator and the image use different wavelength grids");
+    }
+    if (section.grain_index_of_label.empty()) throw InputError("the thin section's grains are not indexed (call validate())");
+    const int channels = integrator != nullptr ? 3 : 1;
+    const PixelGrains pixels = pixel_grains(section, settings.microscope.stage_deg);
+
+    // The thickness range of each grain (the last entry: outside the section, glass and balsam only).
+    const std::size_t grain_count = section.grains.size() + 1;
+    std::vector<double> thinnest(grain_count, std::numeric_limits<double>::infinity());
+    std::vector<double> thickest(grain_count, -std::numeric_limits<double>::infinity());
+    const auto grain_thickness = [&](std::size_t g) {  // uniform sections
+        return g < section.grains.size() && section.grains[g].thickness_um ? *section.grains[g].thickness_um : section.thickness_um;
+    };
+    for (std::size_t k = 0; k < pixels.grain.size(); ++k) {
+        const auto g = static_cast<std::size_t>(pixels.grain[k]);
+        const double thickness = pixels.thickness_um.empty() ? grain_thickness(g) : pixels.thickness_um[k];
+        thinnest[g] = std::min(thinnest[g], thickness);
+        thickest[g] = std::max(thickest[g], thickness);
+    }
+    std::vector<OpticalMedium> media;
+    for (const ThinSectionGrain& grain : section.grains) media.push_back(OpticalMedium::of(catalog.find(grain.mineral), grain.crystal_axes));
+    media.push_back(settings.mounting.cement);
+
+    const double middle_wavelength_nm = wavelengths[wavelengths.size() / 2];
+    const MicroscopeOptics optics(settings.microscope, settings.mounting);
+    std::vector<GrainTable> tables(grain_count);
+    std::atomic<std::size_t> grains_done{0};
+#pragma omp parallel for schedule(dynamic)
+    for (std::size_t g = 0; g < grain_count; ++g) {
+        if (!std::isfinite(thinnest[g])) continue;  // not in view
+        GrainTable& table = tables[g];
+        const double span = thickest[g] - thinnest[g];
+        table.first_um = thinnest[g];
+        if (span > 0.0) {
+            const double birefringence = std::max(largest_birefringence(media[g], middle_wavelength_nm), 1e-4);
+            table.entries = std::min(kMaxTableEntries, static_cast<int>(std::ceil(span * birefringence / kRetardationStepUm)) + 1);
+            table.step_um = span / (table.entries - 1);
+        }
+        const GrainResponse response(optics, media[g]);
+        std::vector<double> spectrum;
+        table.values.resize(static_cast<std::size_t>(table.entries) * channels);
+        for (int k = 0; k < table.entries; ++k) {
+            response.transmission(table.first_um + k * table.step_um, spectrum);
+            if (integrator != nullptr) {
+                const Eigen::Vector3d xyz = integrator->integrate(spectrum);
+                for (int c = 0; c < 3; ++c) table.values[static_cast<std::size_t>(k) * 3 + c] = static_cast<float>(xyz[c]);
+            } else {
+                table.values[k] = static_cast<float>(spectrum[0]);
+            }
+        }
+        const std::size_t done = ++grains_done;
+        if (progress) {
+#pragma omp critical(orthoscope_progress)
+            progress(static_cast<double>(done) / static_cast<double>(grain_count));
+        }
+    }
+
+    Image image(section.width_px, section.height_px, channels);
+#pragma omp parallel for schedule(static)
+    for (std::size_t k = 0; k < pixels.grain.size(); ++k) {
+        const GrainTable& table = tables[pixels.grain[k]];
+        double position = table.step_um > 0.0 ? (pixels.thickness_um[k] - table.first_um) / table.step_um : 0.0;  // step 0: one entry
+        position = std::clamp(position, 0.0, static_cast<double>(table.entries - 1));
+        const int below = std::min(static_cast<int>(position), table.entries - 1);
+        const int above = std::min(below + 1, table.entries - 1);
+        const float fraction = static_cast<float>(position - below);
+        for (int c = 0; c < channels; ++c) {
+            const float low = table.values[static_cast<std::size_t>(below) * channels + c];
+            const float high = table.values[static_cast<std::size_t>(above) * channels + c];
+            image.pixels[k * channels + c] = low + fraction * (high - low);
+        }
+    }
+    return image;
+}
+
+}  // namespace petroscope

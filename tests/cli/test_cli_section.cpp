@@ -1,0 +1,153 @@
+// petroscope section, run as a user would: a random section is written whole and reproducibly, `show`
+// summarises it, and bad options exit non-zero with a message and no folder or file left behind.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <atomic>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <vector>
+
+namespace petroscope {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_text(const fs::path& path) {
+    std::ifstream file(path, std::ios::binary);
+    std::ostringstream text;
+    text << file.rdbuf();
+    return text.str();
+}
+
+std::string quoted(const fs::path& path) { return "'" + path.string() + "'"; }
+
+std::set<std::string> listing(const fs::path& folder) {
+    std::set<std::string> names;
+    for (const auto& entry : fs::directory_iterator(folder)) names.insert(entry.path().filename().string());
+    return names;
+}
+
+struct CommandResult {
+    int exit_code = -1;
+    std::string out, err;
+};
+
+// out/ receives what petroscope writes, logs/ its standard output and error; removed at the end.
+class CliSection : public ::testing::Test {
+protected:
+    void SetUp() override {
+        static std::atomic<int> counter{0};
+        scratch_ = fs::path(PETROSCOPE_TEST_OUTPUT_DIR) / ("cli-section-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" +
+                                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(scratch_);
+        fs::create_directories(out());
+        fs::create_directories(scratch_ / "logs");
+    }
+    void TearDown() override {
+        std::error_code ignored;
+        fs::remove_all(scratch_, ignored);
+    }
+    fs::path out() const { return scratch_ / "out"; }
+
+    CommandResult petroscope(const std::string& arguments) {
+        const fs::path out_log = scratch_ / "logs" / "stdout.txt";
+        const fs::path err_log = scratch_ / "logs" / "stderr.txt";
+        const std::string command = "env -u PETROSCOPE_MINERALS -u PETROSCOPE_DATA_DIR " + quoted(PETROSCOPE_BINARY) + " " + arguments + " > " +
+                                    quoted(out_log) + " 2> " + quoted(err_log) + " < /dev/null";
+        const int status = std::system(command.c_str());
+        CommandResult run;
+        run.exit_code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
+        run.out = read_text(out_log);
+        run.err = read_text(err_log);
+        return run;
+    }
+
+    void expect_rejected(const std::string& arguments, const std::vector<std::string>& expected) {
+        SCOPED_TRACE("petroscope " + arguments);
+        const std::set<std::string> before = listing(out());
+        const CommandResult run = petroscope(arguments);
+        EXPECT_EQ(run.exit_code, 2) << run.err;
+        for (const std::string& text : expected) EXPECT_NE(run.err.find(text), std::string::npos) << "'" << text << "' not in stderr: " << run.err;
+        EXPECT_EQ(listing(out()), before);
+    }
+
+private:
+    fs::path scratch_;
+};
+
+TEST_F(CliSection, RandomWritesAReproducibleSection) {
+    const std::string arguments = " --minerals quartz,orthoclase,biotite --weights 5,3,1 --grains 60 --size 128 --pixel-size 3um --thickness 25um --seed 4";
+    const CommandResult run = petroscope("section random" + arguments + " -o " + quoted(out() / "first"));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_EQ(listing(out() / "first"), (std::set<std::string>{"section.txt", "grains.png"}));
+    const std::string description = read_text(out() / "first" / "section.txt");
+    EXPECT_NE(description.find("name: first\n"), std::string::npos) << description;
+    EXPECT_NE(description.find("size_px: 128 128\n"), std::string::npos);
+    EXPECT_NE(description.find("pixel_size_um: 3\n"), std::string::npos);
+    EXPECT_NE(description.find("thickness_um: 25\n"), std::string::npos);
+
+    ASSERT_EQ(petroscope("section random" + arguments + " --name first -o " + quoted(out() / "second")).exit_code, 0);
+    EXPECT_EQ(read_text(out() / "second" / "section.txt"), description);
+    EXPECT_EQ(read_text(out() / "second" / "grains.png"), read_text(out() / "first" / "grains.png"));
+
+    const CommandResult show = petroscope("section show " + quoted(out() / "first") + " --json");
+    ASSERT_EQ(show.exit_code, 0) << show.err;
+    const nlohmann::json summary = nlohmann::json::parse(show.out);
+    EXPECT_EQ(summary["name"], "first");
+    EXPECT_EQ(summary["size_px"], nlohmann::json({128, 128}));
+    EXPECT_EQ(summary["thickness"]["kind"], "uniform");
+    EXPECT_EQ(summary["thickness"]["thickness_um"].get<double>(), 25.0);
+    int grains = 0;
+    double area = 0.0;
+    for (const auto& [mineral, entry] : summary["minerals"].items()) {
+        EXPECT_TRUE(mineral == "quartz" || mineral == "orthoclase" || mineral == "biotite") << mineral;
+        grains += entry["grains"].get<int>();
+        area += entry["area_fraction"].get<double>();
+    }
+    EXPECT_EQ(grains, summary["grains"].get<int>());
+    EXPECT_GE(grains, 55);
+    EXPECT_NEAR(area, 1.0, 1e-12);
+
+    const CommandResult text = petroscope("section show " + quoted(out() / "first" / "section.txt"));
+    ASSERT_EQ(text.exit_code, 0) << text.err;
+    EXPECT_NE(text.out.find("128 x 128 px, pixel 3 um"), std::string::npos) << text.out;
+    EXPECT_NE(text.out.find("uniform 25 um"), std::string::npos) << text.out;
+}
+
+TEST_F(CliSection, RandomMakesWedges) {
+    const CommandResult run = petroscope("section random --minerals quartz --grains 20 --size 64 --wedge 0um,60um -o " + quoted(out() / "wedge"));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_NE(read_text(out() / "wedge" / "section.txt").find("thickness_wedge_um: 0 60 x\n"), std::string::npos);
+    const nlohmann::json summary = nlohmann::json::parse(petroscope("section show --json " + quoted(out() / "wedge")).out);
+    EXPECT_EQ(summary["thickness"]["kind"], "wedge");
+    EXPECT_EQ(summary["thickness"]["end_um"].get<double>(), 60.0);
+}
+
+TEST_F(CliSection, RandomRejectsBadOptionsAndWritesNothing) {
+    const std::string to = " -o " + quoted(out() / "section");
+    expect_rejected("section random --minerals quarz,biotite" + to, {"--minerals", "quarz", "quartz", "petroscope minerals"});
+    expect_rejected("section random --minerals quartz,,biotite" + to, {"--minerals"});
+    expect_rejected("section random --minerals quartz --grains 0" + to, {"--grains 0"});
+    expect_rejected("section random --minerals quartz --size 16 --grains 257" + to, {"--grains 257", "1 to 256"});
+    expect_rejected("section random --minerals quartz --size 8" + to, {"--size 8", "16 to 8192"});
+    expect_rejected("section random --minerals quartz --size 9000" + to, {"--size 9000"});
+    expect_rejected("section random --minerals quartz,biotite --weights 1" + to, {"--weights: 1 values for 2 minerals"});
+    expect_rejected("section random --minerals quartz,biotite --weights 1,x" + to, {"--weights '1,x'"});
+    expect_rejected("section random --minerals quartz,biotite --sizes 1,0" + to, {"grain sizes must be finite and > 0"});
+    expect_rejected("section random --minerals quartz --pixel-size 0um" + to, {"--pixel-size"});
+    expect_rejected("section random --minerals quartz --thickness 30" + to, {"--thickness", "unit"});
+    expect_rejected("section random --minerals quartz --wedge 0um" + to, {"--wedge '0um'"});
+    expect_rejected("section random --minerals quartz --wedge 0um,0um" + to, {"--wedge"});
+    expect_rejected("section random --minerals quartz -o " + quoted(out() / "no" / "such"), {"does not exist"});
+    expect_rejected("section show " + quoted(out() / "missing"), {"missing", "no such folder or description file"});
+}
+
+}  // namespace
+}  // namespace petroscope
