@@ -1,5 +1,6 @@
 // petroscope conoscope: interference figures.
 #include "cli_common.hpp"
+#include "cli_light.hpp"
 
 #include "petroscope/core/error.hpp"
 #include "petroscope/core/text.hpp"
@@ -7,13 +8,10 @@
 #include "petroscope/io/data_files.hpp"
 #include "petroscope/microscope/conoscope.hpp"
 #include "petroscope/optics/orientation.hpp"
-#include "petroscope/spectral/color.hpp"
-#include "petroscope/spectral/wavelength_grid.hpp"
 
 #include <chrono>
 #include <iostream>
 #include <memory>
-#include <optional>
 
 namespace petroscope::cli {
 namespace {
@@ -27,19 +25,13 @@ struct ConoscopeOptions {
     std::string euler;
     double na = 0.85;
     int size_px = 512;
-    std::string wavelength;
-    std::string wavelength_grid = "380:780:5";
-    std::string illuminant = "D65";
-    bool no_white_balance = false;
-    double exposure = 1.0;
+    LightOptions light;
     double stage_deg = 0.0;
     double polarizer_deg = 0.0;
     double analyzer_deg = 90.0;
     bool no_analyzer = false;
     double surround_n = 1.54;
-    std::string plate;
-    double plate_deg = 45.0;
-    double wedge_position = 0.5;
+    PlateOptions plate;
     std::string output;
 };
 
@@ -69,28 +61,14 @@ void run_conoscope(const ConoscopeOptions& options, const std::string& minerals_
     settings.analyzer_deg = options.analyzer_deg;
     settings.analyzer_in = !options.no_analyzer;
     settings.surround_n = options.surround_n;
-    if (!(options.exposure > 0.0)) throw InputError("--exposure must be > 0");
-
-    const bool monochromatic = !options.wavelength.empty();
-    std::optional<WavelengthGrid> grid;
-    if (monochromatic) {
-        settings.wavelengths_nm = {with_option("--wavelength", [&] { return parse_wavelength_nm(options.wavelength); })};
-        if (!(settings.wavelengths_nm[0] > 0.0)) throw InputError("--wavelength '" + options.wavelength + "': must be > 0");
-    } else {
-        grid = with_option("--wavelengths", [&] { return WavelengthGrid::parse(options.wavelength_grid); });
-        settings.wavelengths_nm = grid->wavelengths_nm();
-    }
+    const ResolvedLight light_used = resolve_light(options.light);
+    settings.wavelengths_nm = light_used.wavelengths_nm;
     settings.validate();
     ImageResult result(options.output);  // fails now, before rendering, if the output cannot be written
 
     const MineralCatalog catalog = load_mineral_catalog(minerals_directory(minerals_dir));
     const Mineral& mineral = catalog.find(options.mineral);
-    if (!options.plate.empty()) {
-        const PlateKind kind = with_option("--plate", [&] { return parse_plate(options.plate); });
-        settings.plate = with_option("--plate", [&] {
-            return make_accessory_plate(kind, catalog.find(plate_mineral_name(kind)), options.plate_deg, options.wedge_position);
-        });
-    }
+    settings.plate = make_plate(options.plate, catalog);
     if (mineral.absorbing()) {
         std::cerr << "petroscope: note: " << mineral.name
                   << " absorbs (pleochroism); the conoscope uses its refractive indices only, absorption is left out\n";
@@ -111,23 +89,11 @@ void run_conoscope(const ConoscopeOptions& options, const std::string& minerals_
 
     const PrincipalIndexFunction principal_n = [&mineral](double nm) { return mineral.principal_n(nm); };
     const auto progress = [](double fraction) { show_progress("rendering", fraction); };
-    Image linear_rgb;
     nlohmann::json light;
-    if (monochromatic) {
-        const Image intensity = render_conoscope(settings, principal_n, nullptr, progress);
-        linear_rgb = gray_image_to_rgb(intensity, options.exposure);
-        light = {{"mode", "monochromatic"}, {"wavelength_nm", settings.wavelengths_nm[0]},
-                 {"pixel_values", "transmitted intensity relative to the incident (after the polarizer), in every channel, times exposure"}};
-    } else {
-        const LightSource source = load_light_source(options.illuminant);
-        const SpectralIntegrator integrator(settings.wavelengths_nm, load_cie_1931_observer(), source);
-        const Image xyz = render_conoscope(settings, principal_n, &integrator, progress);
-        linear_rgb = xyz_image_to_linear_srgb(xyz, integrator.white_xyz(), !options.no_white_balance, options.exposure);
-        light = {{"mode", "white"}, {"illuminant", source.name},
-                 {"wavelengths_nm", {{"start", grid->start_nm}, {"end", grid->end_nm}, {"step", grid->step_nm}, {"count", grid->size()}}},
-                 {"white_balance", !options.no_white_balance},
-                 {"pixel_values", "linear sRGB (EXR/TIFF) or encoded sRGB (PNG); white = parallel polars without the crystal, times exposure"}};
-    }
+    const Image linear_rgb = render_in_light(
+        options.light, light_used,
+        [&](const SpectralIntegrator* integrator) { return render_conoscope(settings, principal_n, integrator, progress); },
+        "parallel polars without the crystal", light);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
     nlohmann::json axes = nlohmann::json::array();
@@ -151,11 +117,9 @@ void run_conoscope(const ConoscopeOptions& options, const std::string& minerals_
         {"analyzer_in", settings.analyzer_in},
         {"numerical_aperture", settings.numerical_aperture},
         {"surround_n", settings.surround_n},
-        {"plate", settings.plate ? nlohmann::json{{"kind", plate_name(settings.plate->kind)}, {"thickness_um", settings.plate->thickness_um},
-                                                  {"slow_deg", settings.plate->slow_deg}, {"description", settings.plate->description}}
-                                 : nlohmann::json(nullptr)},
+        {"plate", plate_json(settings.plate)},
         {"size_px", settings.size_px},
-        {"exposure", options.exposure},
+        {"exposure", options.light.exposure},
         {"light", light},
         {"model", "single-pass Jones through the slab from its exact eigenmodes, Fresnel transmission at both faces, no multiple reflections"},
         {"image_frame", "x to the East (right), y to the North (up); image point (x, y) shows the wave with sin(theta_air)(cos phi, sin phi) = NA (x, y)"},
@@ -190,18 +154,12 @@ void add_conoscope_command(CLI::App& app, const std::string& minerals_dir, const
         ->excludes(cut)->excludes(azimuth)->excludes(tilt);
     command->add_option("--na", options->na, "Numerical aperture of the objective (0 < NA < 1)")->capture_default_str();
     command->add_option("--size", options->size_px, "Image width and height in pixels (64 to 4096)")->capture_default_str();
-    command->add_option("--wavelength", options->wavelength, "Monochromatic light at this wavelength (589nm, 0.633um); default: white light");
-    command->add_option("--wavelengths", options->wavelength_grid, "White-light grid START:END:STEP in nm")->capture_default_str();
-    command->add_option("--illuminant", options->illuminant, "White light: D65, A (halogen) or blackbody:3200K")->capture_default_str();
-    command->add_flag("--no-white-balance", options->no_white_balance, "Keep the colour cast of the illuminant");
-    command->add_option("--exposure", options->exposure, "Scale the image brightness")->capture_default_str();
+    add_light_options(command, options->light);
     command->add_option("--stage-deg", options->stage_deg, "Stage rotation (counter-clockwise seen from the observer)")->capture_default_str();
     command->add_option("--polarizer-deg", options->polarizer_deg, "Polarizer direction, degrees from E toward N")->capture_default_str();
     auto* analyzer = command->add_option("--analyzer-deg", options->analyzer_deg, "Analyzer direction, degrees from E toward N")->capture_default_str();
     command->add_flag("--no-analyzer", options->no_analyzer, "Take the analyzer out (plane-polarized light)")->excludes(analyzer);
-    command->add_option("--plate", options->plate, "Accessory plate: gypsum (first-order red), mica (quarter wave), wedge (quartz wedge)");
-    command->add_option("--plate-deg", options->plate_deg, "The plate's slow direction, degrees from E toward N (45: NE-SW)")->capture_default_str();
-    command->add_option("--wedge-position", options->wedge_position, "How far the quartz wedge is pushed in, 0 to 1 (0 to 4 orders)")->capture_default_str();
+    add_plate_options(command, options->plate);
     command->add_option("--surround-n", options->surround_n, "Index of the mounting medium on both faces (Canada balsam ~1.54)")->capture_default_str();
     command->add_option("-o,--output", options->output, "Output image: .png (sRGB, for viewing), .exr or .tif (float); a JSON sidecar <output>.json is written beside it")->required();
     command->callback([options, &minerals_dir, command_line] { run_conoscope(*options, minerals_dir, command_line); });

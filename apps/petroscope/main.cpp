@@ -20,7 +20,9 @@ int main(int argc, char** argv) {
         "  petroscope minerals show quartz --wavelength 589nm --json\n"
         "  petroscope interface --case verification/cases/brewster-p.json\n"
         "  petroscope verify                                           (the interface model's verification suite)\n"
-        "  petroscope conical --crystal KGW --length 20mm --wavelength 633nm -o ring.png"};
+        "  petroscope conical --crystal KGW --length 20mm --wavelength 633nm -o ring.png\n"
+        "  petroscope orthoscope --section thin_sections/granite --plate gypsum -o granite.png\n"
+        "  petroscope chart --csv chart.csv -o chart.png"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "petroscope 0.1.0");
     std::string minerals_dir;
@@ -37,7 +39,8 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        // --help and --version end with 0; every malformed command line with 2, like any other bad input.
+        return app.exit(e) == 0 ? 0 : 2;
     } catch (const petroscope::cli::ExitCode& exit) {
         return exit.code;
     } catch (const petroscope::InputError& e) {

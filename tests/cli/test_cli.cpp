@@ -5,6 +5,8 @@
 #include "petroscope/io/image_writer.hpp"
 #include "petroscope/minerals/mineral.hpp"
 
+#include "support/cli_fixture.hpp"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -25,79 +27,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string read_text(const fs::path& path) {
-    std::ifstream file(path, std::ios::binary);
-    std::ostringstream text;
-    text << file.rdbuf();
-    return text.str();
-}
+using testing::CommandResult;
+using testing::listing;
+using testing::quoted;
+using testing::read_text;
 
-std::string quoted(const fs::path& path) { return "'" + path.string() + "'"; }
-
-// Every name in `folder`, hidden ones (".x.tmp-…") included.
-std::set<std::string> listing(const fs::path& folder) {
-    std::set<std::string> names;
-    for (const auto& entry : fs::directory_iterator(folder)) names.insert(entry.path().filename().string());
-    return names;
-}
-
-struct CommandResult {
-    int exit_code = -1;
-    std::string out, err;
-};
-
-// A scratch folder per test under PETROSCOPE_TEST_OUTPUT_DIR: out/ receives the images, logs/ the captured
-// standard output and error (kept apart so that out/ lists only what petroscope wrote). Removed at the end.
-class Cli : public ::testing::Test {
-protected:
-    void SetUp() override {
-        static std::atomic<int> counter{0};
-        scratch_ = fs::path(PETROSCOPE_TEST_OUTPUT_DIR) /
-                   ("cli-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" +
-                    ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(scratch_);
-        fs::create_directories(out());
-        fs::create_directories(scratch_ / "logs");
-    }
-    void TearDown() override {
-        std::error_code ignored;
-        fs::remove_all(scratch_, ignored);
-    }
-
-    fs::path out() const { return scratch_ / "out"; }
-    const fs::path& scratch() const { return scratch_; }
-
-    // Runs `petroscope ARGUMENTS` with the environment overrides removed (so the shipped data is used).
-    CommandResult petroscope(const std::string& arguments) {
-        const fs::path out_log = scratch_ / "logs" / "stdout.txt";
-        const fs::path err_log = scratch_ / "logs" / "stderr.txt";
-        const std::string command = "env -u PETROSCOPE_MINERALS -u PETROSCOPE_DATA_DIR " + quoted(PETROSCOPE_BINARY) +
-                                    " " + arguments + " > " + quoted(out_log) + " 2> " + quoted(err_log) + " < /dev/null";
-        const int status = std::system(command.c_str());
-        CommandResult run;
-        run.exit_code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
-        run.out = read_text(out_log);
-        run.err = read_text(err_log);
-        return run;
-    }
-
-    // A conoscope command that must fail: non-zero exit, every `expected` text in the message, and out/
-    // exactly as before (no image, no sidecar, no ".NAME.tmp-*" file).
-    void expect_rejected(const std::string& arguments, const std::vector<std::string>& expected) {
-        SCOPED_TRACE("petroscope " + arguments);
-        const std::set<std::string> before = listing(out());
-        const CommandResult run = petroscope(arguments);
-        EXPECT_NE(run.exit_code, 0);
-        EXPECT_NE(run.exit_code, -1) << "did not exit normally";
-        for (const std::string& text : expected) {
-            EXPECT_NE(run.err.find(text), std::string::npos) << "'" << text << "' not in stderr: " << run.err;
-        }
-        EXPECT_EQ(listing(out()), before);
-    }
-
-private:
-    fs::path scratch_;
-};
+class Cli : public testing::CliFixture {};
 
 const std::set<std::string> kMineralNames{
     "quartz", "calcite", "muscovite", "biotite", "forsterite", "fayalite", "augite", "hornblende", "albite",

@@ -1,5 +1,7 @@
 // petroscope section, run as a user would: a random section is written whole and reproducibly, `show`
 // summarises it, and bad options exit non-zero with a message and no folder or file left behind.
+#include "support/cli_fixture.hpp"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -19,68 +21,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string read_text(const fs::path& path) {
-    std::ifstream file(path, std::ios::binary);
-    std::ostringstream text;
-    text << file.rdbuf();
-    return text.str();
-}
+using testing::CommandResult;
+using testing::listing;
+using testing::quoted;
+using testing::read_text;
 
-std::string quoted(const fs::path& path) { return "'" + path.string() + "'"; }
-
-std::set<std::string> listing(const fs::path& folder) {
-    std::set<std::string> names;
-    for (const auto& entry : fs::directory_iterator(folder)) names.insert(entry.path().filename().string());
-    return names;
-}
-
-struct CommandResult {
-    int exit_code = -1;
-    std::string out, err;
-};
-
-// out/ receives what petroscope writes, logs/ its standard output and error; removed at the end.
-class CliSection : public ::testing::Test {
-protected:
-    void SetUp() override {
-        static std::atomic<int> counter{0};
-        scratch_ = fs::path(PETROSCOPE_TEST_OUTPUT_DIR) / ("cli-section-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" +
-                                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(scratch_);
-        fs::create_directories(out());
-        fs::create_directories(scratch_ / "logs");
-    }
-    void TearDown() override {
-        std::error_code ignored;
-        fs::remove_all(scratch_, ignored);
-    }
-    fs::path out() const { return scratch_ / "out"; }
-
-    CommandResult petroscope(const std::string& arguments) {
-        const fs::path out_log = scratch_ / "logs" / "stdout.txt";
-        const fs::path err_log = scratch_ / "logs" / "stderr.txt";
-        const std::string command = "env -u PETROSCOPE_MINERALS -u PETROSCOPE_DATA_DIR " + quoted(PETROSCOPE_BINARY) + " " + arguments + " > " +
-                                    quoted(out_log) + " 2> " + quoted(err_log) + " < /dev/null";
-        const int status = std::system(command.c_str());
-        CommandResult run;
-        run.exit_code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
-        run.out = read_text(out_log);
-        run.err = read_text(err_log);
-        return run;
-    }
-
-    void expect_rejected(const std::string& arguments, const std::vector<std::string>& expected) {
-        SCOPED_TRACE("petroscope " + arguments);
-        const std::set<std::string> before = listing(out());
-        const CommandResult run = petroscope(arguments);
-        EXPECT_EQ(run.exit_code, 2) << run.err;
-        for (const std::string& text : expected) EXPECT_NE(run.err.find(text), std::string::npos) << "'" << text << "' not in stderr: " << run.err;
-        EXPECT_EQ(listing(out()), before);
-    }
-
-private:
-    fs::path scratch_;
-};
+class CliSection : public testing::CliFixture {};
 
 TEST_F(CliSection, RandomWritesAReproducibleSection) {
     const std::string arguments = " --minerals quartz,orthoclase,biotite --weights 5,3,1 --grains 60 --size 128 --pixel-size 3um --thickness 25um --seed 4";

@@ -10,6 +10,8 @@
 #include "petroscope/io/label_image.hpp"
 #include "petroscope/optics/orientation.hpp"
 
+#include "support/test_files.hpp"
+
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -28,20 +30,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string read_text(const fs::path& path) {
-    std::ifstream file(path, std::ios::binary);
-    std::ostringstream text;
-    text << file.rdbuf();
-    return text.str();
-}
-
-void write_text(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
-
-std::set<std::string> listing(const fs::path& folder) {
-    std::set<std::string> names;
-    for (const auto& entry : fs::directory_iterator(folder)) names.insert(entry.path().filename().string());
-    return names;
-}
+using testing::listing;
+using testing::read_text;
+using testing::write_text;
 
 class ThinSectionFile : public ::testing::Test {
 protected:
