@@ -7,6 +7,7 @@
 #include "petroscope/core/units.hpp"
 #include "petroscope/io/data_files.hpp"
 #include "petroscope/microscope/conoscope.hpp"
+#include "petroscope/microscope/orthoscope.hpp"
 #include "petroscope/optics/orientation.hpp"
 
 #include <chrono>
@@ -31,6 +32,8 @@ struct ConoscopeOptions {
     double analyzer_deg = 90.0;
     bool no_analyzer = false;
     double surround_n = 1.54;
+    bool stack = false;
+    bool exact = false;
     PlateOptions plate;
     std::string output;
 };
@@ -69,6 +72,11 @@ void run_conoscope(const ConoscopeOptions& options, const std::string& minerals_
     const MineralCatalog catalog = load_mineral_catalog(minerals_directory(minerals_dir));
     const Mineral& mineral = catalog.find(options.mineral);
     settings.plate = make_plate(options.plate, catalog);
+    if (options.stack || options.exact) {
+        settings.mounting = standard_mounting(catalog);
+        settings.exact = options.exact;
+        settings.validate();
+    }
     if (mineral.absorbing()) {
         std::cerr << "petroscope: note: " << mineral.name
                   << " absorbs (pleochroism); the conoscope uses its refractive indices only, absorption is left out\n";
@@ -116,12 +124,19 @@ void run_conoscope(const ConoscopeOptions& options, const std::string& minerals_
         {"analyzer_deg", settings.analyzer_in ? nlohmann::json(settings.analyzer_deg) : nlohmann::json(nullptr)},
         {"analyzer_in", settings.analyzer_in},
         {"numerical_aperture", settings.numerical_aperture},
-        {"surround_n", settings.surround_n},
+        {"surround_n", settings.mounting ? nlohmann::json(nullptr) : nlohmann::json(settings.surround_n)},
+        {"mounting", settings.mounting ? nlohmann::json{{"slide", "crown glass"}, {"slide_um", settings.mounting->slide_um},
+                                                        {"cement", "canada balsam"}, {"lower_cement_um", settings.mounting->lower_cement_um},
+                                                        {"upper_cement_um", settings.mounting->upper_cement_um}, {"cover", "crown glass"},
+                                                        {"cover_um", settings.mounting->cover_um}}
+                                       : nlohmann::json(nullptr)},
         {"plate", plate_json(settings.plate)},
         {"size_px", settings.size_px},
         {"exposure", options.light.exposure},
         {"light", light},
-        {"model", "single-pass Jones through the slab from its exact eigenmodes, Fresnel transmission at both faces, no multiple reflections"},
+        {"model", settings.exact ? "exact coherent 4x4 transfer matrix (Berreman) through the whole section, per image point"
+                  : settings.mounting ? "single-pass Jones through the whole section (every layer's exact waves, Fresnel at every interface), per image point"
+                                      : "single-pass Jones through the slab from its exact eigenmodes, Fresnel transmission at both faces, no multiple reflections"},
         {"image_frame", "x to the East (right), y to the North (up); image point (x, y) shows the wave with sin(theta_air)(cos phi, sin phi) = NA (x, y)"},
         {"seconds", seconds},
     };
@@ -160,7 +175,12 @@ void add_conoscope_command(CLI::App& app, const std::string& minerals_dir, const
     auto* analyzer = command->add_option("--analyzer-deg", options->analyzer_deg, "Analyzer direction, degrees from E toward N")->capture_default_str();
     command->add_flag("--no-analyzer", options->no_analyzer, "Take the analyzer out (plane-polarized light)")->excludes(analyzer);
     add_plate_options(command, options->plate);
-    command->add_option("--surround-n", options->surround_n, "Index of the mounting medium on both faces (Canada balsam ~1.54)")->capture_default_str();
+    auto* surround = command->add_option("--surround-n", options->surround_n, "Index of the mounting medium on both faces (Canada balsam ~1.54)")->capture_default_str();
+    command->add_flag("--stack", options->stack,
+                      "The whole thin section: air, slide glass, balsam, crystal, balsam, cover glass, air (docs/orthoscope.md); slower")
+        ->excludes(surround);
+    command->add_flag("--exact", options->exact, "With the whole stack: coherent 4x4 transfer matrix, every multiple reflection; slowest")
+        ->excludes(surround);
     command->add_option("-o,--output", options->output, "Output image: .png (sRGB, for viewing), .exr or .tif (float); a JSON sidecar <output>.json is written beside it")->required();
     command->callback([options, &minerals_dir, command_line] { run_conoscope(*options, minerals_dir, command_line); });
 }

@@ -1,6 +1,7 @@
 #include "petroscope/microscope/conoscope.hpp"
 
 #include "conoscope_evaluator.hpp"
+#include "conoscope_stack.hpp"
 
 #include "petroscope/core/error.hpp"
 #include "petroscope/core/text.hpp"
@@ -21,7 +22,8 @@ void ConoscopeSettings::validate() const {
     }
     if (!(thickness_um > 0.0) || !std::isfinite(thickness_um)) fail("thickness must be a positive length, e.g. 30um");
     if (!(surround_n >= 1.0) || !std::isfinite(surround_n)) fail("surrounding-medium index must be a finite number >= 1");
-    if (surround_n <= numerical_aperture) fail("surrounding-medium index must exceed the numerical aperture");
+    if (!mounting && surround_n <= numerical_aperture) fail("surrounding-medium index must exceed the numerical aperture");
+    if (exact && !mounting) fail("the exact 4x4 mode needs the whole stack (a mounting)");
     for (const double angle : {polarizer_deg, analyzer_deg, stage_deg}) {
         if (!std::isfinite(angle)) fail("angles must be finite numbers of degrees");
     }
@@ -61,6 +63,7 @@ Image render_conoscope(const ConoscopeSettings& settings, const PrincipalIndexFu
     if (integrator != nullptr && integrator->weights().size() != settings.wavelengths_nm.size()) {
         throw InputError("the colour integrator and the figure use different wavelength grids");
     }
+    if (settings.mounting) return detail::render_conoscope_through_stack(settings, principal_n, integrator, progress);
     const detail::ConoscopeEvaluator evaluator(settings, principal_n);
     const int size = settings.size_px;
     Image image(size, size, integrator != nullptr ? 3 : 1);

@@ -73,9 +73,13 @@ Eigen::Matrix2cd plate_jones_lab(const AccessoryPlate& plate, double wavelength_
 }
 
 MicroscopeOptics::MicroscopeOptics(const MicroscopeSettings& settings, const SectionMounting& mounting)
-    : settings_(settings), mounting_(mounting) {
-    const int rings = settings.condenser_rings > 0 ? settings.condenser_rings : default_condenser_rings(settings.condenser_na);
-    directions_ = condenser_samples(settings.condenser_na, rings);
+    : MicroscopeOptics(settings, mounting,
+                       condenser_samples(settings.condenser_na, settings.condenser_rings > 0 ? settings.condenser_rings
+                                                                                             : default_condenser_rings(settings.condenser_na))) {}
+
+MicroscopeOptics::MicroscopeOptics(const MicroscopeSettings& settings, const SectionMounting& mounting,
+                                   std::vector<IlluminationSample> directions)
+    : settings_(settings), mounting_(mounting), directions_(std::move(directions)) {
     for (const double wavelength_nm : settings.wavelengths_nm) {
         plate_jones_lab_.push_back(settings.plate ? plate_jones_lab(*settings.plate, wavelength_nm, settings.exact)
                                                   : Eigen::Matrix2cd::Identity());

@@ -356,6 +356,17 @@ TEST_F(Cli, OrthoscopeRejectsBadInputAndLeavesNoFiles) {
     expect_rejected("orthoscope --section " + kGranite + " -o " + quoted(out() / "x.jpg"), {"x.jpg"});
 }
 
+TEST_F(Cli, ConoscopeThroughTheWholeStack) {
+    const fs::path png = out() / "stack.png";
+    const CommandResult run = petroscope("conoscope --mineral calcite --size 64 --wavelength 589nm --exact -o " + quoted(png));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const nlohmann::json sidecar = nlohmann::json::parse(read_text(out() / "stack.png.json"));
+    EXPECT_EQ(sidecar["mounting"]["cover_um"].get<double>(), 170.0);
+    EXPECT_TRUE(sidecar["surround_n"].is_null());
+    EXPECT_NE(sidecar["model"].get<std::string>().find("exact coherent 4x4"), std::string::npos);
+    expect_rejected("conoscope --stack --surround-n 1.6 -o " + quoted(out() / "x.png"), {"excludes"});
+}
+
 // The chart's CSV: one row per retardation step, black at Γ = 0, first-order red near 550 nm (the least
 // luminous colour of the first order's end).
 TEST_F(Cli, ChartWritesImageCsvAndSidecar) {

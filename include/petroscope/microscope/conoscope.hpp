@@ -28,6 +28,11 @@ struct ConoscopeSettings {
     /// An accessory plate in the tube, crossed at normal incidence by the light of every image point (the same
     /// retardation over the figure). With a plate every sample goes through the reference path (slower).
     std::optional<AccessoryPlate> plate;
+    /// The whole thin-section stack instead of a slab in balsam half-spaces: air, slide glass, balsam, crystal,
+    /// balsam, cover glass, air (microscope/polarizing_microscope.hpp), each image point on its own (slower).
+    std::optional<SectionMounting> mounting;
+    /// With `mounting`: the coherent 4×4 solution (every multiple reflection) instead of single pass.
+    bool exact = false;
 
     /// Checks every field; throws InputError naming the setting and the accepted range.
     void validate() const;

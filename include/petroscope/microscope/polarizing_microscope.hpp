@@ -96,6 +96,9 @@ struct MicroscopeSettings {
 class MicroscopeOptics {
 public:
     MicroscopeOptics(const MicroscopeSettings& settings, const SectionMounting& mounting);
+    /// The same for given directions instead of the condenser's (the conoscope: one direction per image point).
+    MicroscopeOptics(const MicroscopeSettings& settings, const SectionMounting& mounting,
+                     std::vector<IlluminationSample> directions);
 
     const MicroscopeSettings& settings() const { return settings_; }
     const SectionMounting& mounting() const { return mounting_; }

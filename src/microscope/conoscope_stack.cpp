@@ -1,0 +1,60 @@
+// The conoscope through the whole thin-section stack: each image point is the plane wave of its tangential
+// wavevector ξ = NA·(x, y) (in air), sent through the same optical train as the orthoscope's
+// (polarizing_microscope.hpp). One MicroscopeOptics per image point, single pass or exact 4×4.
+#include "conoscope_stack.hpp"
+
+#include <atomic>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace petroscope::detail {
+
+Image render_conoscope_through_stack(const ConoscopeSettings& settings, const PrincipalIndexFunction& principal_n,
+                                     const SpectralIntegrator* integrator, const ProgressCallback& progress) {
+    MicroscopeSettings microscope;
+    microscope.polars = {settings.polarizer_deg, settings.analyzer_deg, settings.analyzer_in};
+    microscope.stage_deg = settings.stage_deg;
+    microscope.plate = settings.plate;
+    microscope.exact = settings.exact;
+    microscope.wavelengths_nm = settings.wavelengths_nm;
+    OpticalMedium crystal;
+    crystal.principal_n = principal_n;
+    crystal.axes = settings.crystal_axes;
+    const SectionMounting& mounting = *settings.mounting;
+
+    const int size = settings.size_px;
+    Image image(size, size, integrator != nullptr ? 3 : 1);
+    const double aperture_squared = settings.numerical_aperture * settings.numerical_aperture;
+    std::atomic<int> rows_done{0};
+#pragma omp parallel
+    {
+        std::vector<double> spectrum;
+#pragma omp for schedule(dynamic, 1)
+        for (int row = 0; row < size; ++row) {
+            for (int column = 0; column < size; ++column) {
+                const Eigen::Vector2d xi = conoscope_tangential_wavevector(settings, column, row);
+                if (xi.squaredNorm() > aperture_squared) continue;
+                const MicroscopeOptics optics(microscope, mounting, {IlluminationSample{xi, 1.0}});
+                GrainResponse(optics, crystal).transmission(settings.thickness_um, spectrum);
+                if (integrator == nullptr) {
+                    image.at(column, row, 0) = static_cast<float>(spectrum[0]);
+                    continue;
+                }
+                const Eigen::Vector3d xyz = integrator->integrate(spectrum);
+                for (int c = 0; c < 3; ++c) image.at(column, row, c) = static_cast<float>(xyz[c]);
+            }
+            const int done = ++rows_done;
+#ifdef _OPENMP
+            const bool reporter = omp_get_thread_num() == 0;
+#else
+            const bool reporter = true;
+#endif
+            if (progress && reporter) progress(static_cast<double>(done) / size);
+        }
+    }
+    if (progress) progress(1.0);
+    return image;
+}
+
+}  // namespace petroscope::detail
