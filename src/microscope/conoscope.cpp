@@ -2,14 +2,12 @@
 
 #include "conoscope_evaluator.hpp"
 #include "conoscope_stack.hpp"
+#include "row_progress.hpp"
 
 #include "petroscope/core/error.hpp"
 #include "petroscope/core/text.hpp"
 
 #include <atomic>
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 #include <cmath>
 
 namespace petroscope {
@@ -118,13 +116,7 @@ Image render_conoscope(const ConoscopeSettings& settings, const PrincipalIndexFu
                 store(size - 1 - column, size - 1 - row, minus);
             }
             if (!batch_xi.empty()) flush_batch();
-            const int done = ++rows_done;
-#ifdef _OPENMP
-            const bool reporter = omp_get_thread_num() == 0;
-#else
-            const bool reporter = true;
-#endif
-            if (progress && reporter) progress(static_cast<double>(done) / paired_rows);
+            detail::row_done(progress, rows_done, paired_rows);
         }
     }
     if (progress) progress(1.0);

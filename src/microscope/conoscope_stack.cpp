@@ -2,11 +2,9 @@
 // wavevector ξ = NA·(x, y) (in air), sent through the same optical train as the orthoscope's
 // (polarizing_microscope.hpp). One MicroscopeOptics per image point, single pass or exact 4×4.
 #include "conoscope_stack.hpp"
+#include "row_progress.hpp"
 
 #include <atomic>
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 namespace petroscope::detail {
 
@@ -44,13 +42,7 @@ Image render_conoscope_through_stack(const ConoscopeSettings& settings, const Pr
                 const Eigen::Vector3d xyz = integrator->integrate(spectrum);
                 for (int c = 0; c < 3; ++c) image.at(column, row, c) = static_cast<float>(xyz[c]);
             }
-            const int done = ++rows_done;
-#ifdef _OPENMP
-            const bool reporter = omp_get_thread_num() == 0;
-#else
-            const bool reporter = true;
-#endif
-            if (progress && reporter) progress(static_cast<double>(done) / size);
+            row_done(progress, rows_done, size);
         }
     }
     if (progress) progress(1.0);
