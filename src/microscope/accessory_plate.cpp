@@ -91,7 +91,7 @@ AccessoryPlate make_accessory_plate(PlateKind kind, const Mineral& plate_mineral
     description << ", " << std::fixed << std::setprecision(1) << plate.thickness_um << std::defaultfloat << " µm of " << plate_mineral.name << ", slow direction at "
                 << format_number(slow_deg) << "° from E toward N";
     plate.description = description.str();
-    plate.medium = OpticalMedium::of(plate_mineral, axes);
+    plate.medium = DispersiveMedium::of(plate_mineral, axes);
     return plate;
 }
 

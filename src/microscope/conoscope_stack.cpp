@@ -16,7 +16,7 @@ Image render_conoscope_through_stack(const ConoscopeSettings& settings, const Pr
     microscope.plate = settings.plate;
     microscope.exact = settings.exact;
     microscope.wavelengths_nm = settings.wavelengths_nm;
-    OpticalMedium crystal;
+    DispersiveMedium crystal;
     crystal.principal_n = principal_n;
     crystal.axes = settings.crystal_axes;
     const SectionMounting& mounting = *settings.mounting;

@@ -95,17 +95,6 @@ ModalJones split_over_layer(const Eigen::Matrix2cd& below, const MediumWaves& la
     return result;
 }
 
-Eigen::Matrix3cd principal_permittivity(const Eigen::Vector3d& principal_n, const Eigen::Vector3d& principal_kappa,
-                                        const Eigen::Matrix3d& axes) {
-    Eigen::Vector3cd principal_epsilon;
-    for (int k = 0; k < 3; ++k) {
-        const std::complex<double> index(principal_n[k], principal_kappa[k]);
-        principal_epsilon[k] = index * index;
-    }
-    const Eigen::Matrix3cd rotation = axes.cast<std::complex<double>>();
-    return rotation * principal_epsilon.asDiagonal() * rotation.transpose();
-}
-
 Eigen::Matrix2cd ModalJones::at(double thickness_um) const {
     const std::complex<double> i(0.0, 1.0);
     return term[0] * std::exp(i * phase_per_um[0] * thickness_um) + term[1] * std::exp(i * phase_per_um[1] * thickness_um);

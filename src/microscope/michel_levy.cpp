@@ -29,7 +29,7 @@ void MichelLevySettings::validate() const {
     }
 }
 
-OpticalMedium michel_levy_plate(const MichelLevySettings& settings, double& birefringence_at_reference) {
+DispersiveMedium michel_levy_plate(const MichelLevySettings& settings, double& birefringence_at_reference) {
     // X (fast) along NW–SE, Z (slow) along NE–SW, Y along the microscope axis.
     const double half = std::sqrt(0.5);
     Eigen::Matrix3d axes;
@@ -37,7 +37,7 @@ OpticalMedium michel_levy_plate(const MichelLevySettings& settings, double& bire
         half, 0.0, half,       //
         0.0, 1.0, 0.0;
     if (settings.mineral == nullptr) {
-        OpticalMedium plate;
+        DispersiveMedium plate;
         plate.principal_n = [](double) {
             return Eigen::Vector3d(kClassicFastN, kClassicFastN + 0.5 * kClassicBirefringence, kClassicFastN + kClassicBirefringence);
         };
@@ -48,7 +48,7 @@ OpticalMedium michel_levy_plate(const MichelLevySettings& settings, double& bire
     const Mineral& mineral = *settings.mineral;
     const Eigen::Vector3d n = mineral.principal_n(settings.reference_wavelength_nm);
     birefringence_at_reference = n[2] - n[0];
-    OpticalMedium plate = OpticalMedium::of(mineral, axes);
+    DispersiveMedium plate = DispersiveMedium::of(mineral, axes);
     plate.principal_kappa = nullptr;  // the chart shows interference colours, not body colours
     if (birefringence_at_reference < 0.0) {
         // A negative uniaxial crystal: Z (the optic axis) is its fast direction.
@@ -64,7 +64,7 @@ std::vector<MichelLevyStep> michel_levy_colours(const MichelLevySettings& settin
         throw InputError("the colour integrator and the chart use different wavelength grids");
     }
     double birefringence = 0.0;
-    const OpticalMedium plate = michel_levy_plate(settings, birefringence);
+    const DispersiveMedium plate = michel_levy_plate(settings, birefringence);
     MicroscopeSettings microscope;
     microscope.wavelengths_nm = settings.wavelengths_nm;
     const MicroscopeOptics optics(microscope, mounting);

@@ -63,7 +63,7 @@ struct GrainTable {
     std::vector<float> values;
 };
 
-double largest_birefringence(const OpticalMedium& medium, double wavelength_nm) {
+double largest_birefringence(const DispersiveMedium& medium, double wavelength_nm) {
     const Eigen::Vector3d n = medium.principal_n(wavelength_nm);
     return n.maxCoeff() - n.minCoeff();
 }
@@ -89,9 +89,9 @@ void OrthoscopeSettings::validate() const {
 
 SectionMounting standard_mounting(const MineralCatalog& catalog) {
     SectionMounting mounting;
-    mounting.slide = OpticalMedium::of(catalog.find("crown glass"));
+    mounting.slide = DispersiveMedium::of(catalog.find("crown glass"));
     mounting.cover = mounting.slide;
-    mounting.cement = OpticalMedium::of(catalog.find("canada balsam"));
+    mounting.cement = DispersiveMedium::of(catalog.find("canada balsam"));
     return mounting;
 }
 
@@ -120,8 +120,8 @@ Image render_orthoscope(const ThinSection& section, const MineralCatalog& catalo
         thinnest[g] = std::min(thinnest[g], thickness);
         thickest[g] = std::max(thickest[g], thickness);
     }
-    std::vector<OpticalMedium> media;
-    for (const ThinSectionGrain& grain : section.grains) media.push_back(OpticalMedium::of(catalog.find(grain.mineral), grain.crystal_axes));
+    std::vector<DispersiveMedium> media;
+    for (const ThinSectionGrain& grain : section.grains) media.push_back(DispersiveMedium::of(catalog.find(grain.mineral), grain.crystal_axes));
     media.push_back(settings.mounting.cement);
 
     const double middle_wavelength_nm = wavelengths[wavelengths.size() / 2];

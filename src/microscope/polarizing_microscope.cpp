@@ -24,8 +24,8 @@ Eigen::Matrix2d sp_to_lab(const TangentialWavevector& direction) {
 
 }  // namespace
 
-OpticalMedium OpticalMedium::of(const Mineral& mineral, const Eigen::Matrix3d& axes) {
-    OpticalMedium medium;
+DispersiveMedium DispersiveMedium::of(const Mineral& mineral, const Eigen::Matrix3d& axes) {
+    DispersiveMedium medium;
     medium.principal_n = [&mineral](double wavelength_nm) { return mineral.principal_n(wavelength_nm); };
     if (mineral.absorbing()) {
         medium.principal_kappa = [&mineral](double wavelength_nm) { return mineral.principal_kappa(wavelength_nm); };
@@ -34,9 +34,9 @@ OpticalMedium OpticalMedium::of(const Mineral& mineral, const Eigen::Matrix3d& a
     return medium;
 }
 
-Eigen::Matrix3cd OpticalMedium::permittivity(double wavelength_nm) const {
+OpticalMedium DispersiveMedium::at(double wavelength_nm) const {
     const Eigen::Vector3d kappa = principal_kappa ? principal_kappa(wavelength_nm) : Eigen::Vector3d::Zero();
-    return principal_permittivity(principal_n(wavelength_nm), kappa, axes);
+    return OpticalMedium::from_n_kappa(principal_n(wavelength_nm), kappa, axes);
 }
 
 std::vector<IlluminationSample> condenser_samples(double condenser_na, int rings) {
@@ -138,7 +138,7 @@ std::vector<OpticalLayer> MicroscopeOptics::section_layers(double wavelength_nm,
             {mounting_.cover.permittivity(wavelength_nm), mounting_.cover_um}};
 }
 
-GrainResponse::GrainResponse(const MicroscopeOptics& optics, const OpticalMedium& crystal)
+GrainResponse::GrainResponse(const MicroscopeOptics& optics, const DispersiveMedium& crystal)
     : optics_(optics), crystal_(crystal) {
     const MicroscopeSettings& settings = optics.settings();
     crystal_.axes = rotation_z_deg(settings.stage_deg) * crystal.axes;

@@ -6,6 +6,10 @@ OpticalMedium OpticalMedium::isotropic(std::complex<double> n) {
     return OpticalMedium{Eigen::Vector3cd::Constant(n), Eigen::Matrix3d::Identity()};
 }
 
+OpticalMedium OpticalMedium::from_n_kappa(const Eigen::Vector3d& n, const Eigen::Vector3d& kappa, const Eigen::Matrix3d& axes) {
+    return OpticalMedium{n.cast<std::complex<double>>() + std::complex<double>(0.0, 1.0) * kappa.cast<std::complex<double>>(), axes};
+}
+
 bool OpticalMedium::is_isotropic() const {
     return principal_n[0] == principal_n[1] && principal_n[1] == principal_n[2];
 }

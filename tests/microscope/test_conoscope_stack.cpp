@@ -60,7 +60,7 @@ TEST(ConoscopeStack, IsochromesAndIsogyresStayWhereTheSlabModelPutsThem) {
 TEST(ConoscopeStack, ExactAddsTheAirFaceReflectionsToSinglePass) {
     const Mineral& quartz = testing::repository_minerals().find("quartz");
     const SectionMounting mounting = standard_mounting(testing::repository_minerals());
-    OpticalMedium crystal = OpticalMedium::of(quartz, cut_orientation(Cut::optic_axis, OpticalClass::uniaxial, quartz.principal_n(589.3), 0.0, 0.0));
+    DispersiveMedium crystal = DispersiveMedium::of(quartz, cut_orientation(Cut::optic_axis, OpticalClass::uniaxial, quartz.principal_n(589.3), 0.0, 0.0));
     MicroscopeSettings settings;
     settings.polars.analyzer_deg = 0.0;  // parallel polars: every ray carries light
     for (double wavelength = 545.0; wavelength < 555.0; wavelength += 0.02) settings.wavelengths_nm.push_back(wavelength);

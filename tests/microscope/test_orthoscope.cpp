@@ -192,7 +192,7 @@ TEST(Orthoscope, WedgeInterpolationMatchesDirectEvaluation) {
     settings.mounting = standard_mounting(catalog());
     const Image image = render_orthoscope(section, catalog(), settings, nullptr);
     const MicroscopeOptics optics(settings.microscope, settings.mounting);
-    const GrainResponse response(optics, OpticalMedium::of(catalog().find("calcite"), section.grains[0].crystal_axes));
+    const GrainResponse response(optics, DispersiveMedium::of(catalog().find("calcite"), section.grains[0].crystal_axes));
     std::vector<double> direct;
     double worst = 0.0;
     for (int x = 0; x < 64; ++x) {

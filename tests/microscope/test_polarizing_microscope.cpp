@@ -14,15 +14,15 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-OpticalMedium constant_medium(const Eigen::Vector3d& n, const Eigen::Matrix3d& axes = Eigen::Matrix3d::Identity()) {
-    OpticalMedium medium;
+DispersiveMedium constant_medium(const Eigen::Vector3d& n, const Eigen::Matrix3d& axes = Eigen::Matrix3d::Identity()) {
+    DispersiveMedium medium;
     medium.principal_n = [n](double) { return n; };
     medium.axes = axes;
     return medium;
 }
 
 OpticalLayer isotropic_layer(double n, double thickness_um) {
-    return {principal_permittivity(Eigen::Vector3d::Constant(n), Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity()),
+    return {OpticalMedium::isotropic(n).permittivity(),
             thickness_um};
 }
 
@@ -51,7 +51,7 @@ TEST(GrainResponse, CrossedPolarsMatchRetarderWithFresnelFactors) {
     mounting.slide = constant_medium(Eigen::Vector3d::Constant(glass));
     mounting.cover = mounting.slide;
     mounting.cement = constant_medium(Eigen::Vector3d::Constant(balsam));
-    const OpticalMedium quartz = constant_medium({n_o, n_o, n_e}, cut_orientation(Cut::optic_normal, OpticalClass::uniaxial, {n_o, n_o, n_e}, 45.0, 0.0));
+    const DispersiveMedium quartz = constant_medium({n_o, n_o, n_e}, cut_orientation(Cut::optic_normal, OpticalClass::uniaxial, {n_o, n_o, n_e}, 45.0, 0.0));
     MicroscopeSettings settings;
     settings.wavelengths_nm = {wavelength_nm};
     const MicroscopeOptics optics(settings, mounting);
@@ -71,7 +71,7 @@ TEST(GrainResponse, CrossedPolarsMatchRetarderWithFresnelFactors) {
 TEST(GrainResponse, ExtinctionWhereTheIndicatrixSectionPredicts) {
     const Eigen::Vector3d n(1.63, 1.66, 1.70);
     const Eigen::Matrix3d axes = euler_zyz_deg(37.0, 61.0, -23.0);
-    const OpticalMedium crystal = constant_medium(n, axes);
+    const DispersiveMedium crystal = constant_medium(n, axes);
     SectionMounting mounting;
     mounting.slide = mounting.cover = constant_medium(Eigen::Vector3d::Constant(1.52));
     mounting.cement = constant_medium(Eigen::Vector3d::Constant(1.54));
@@ -106,7 +106,7 @@ TEST(GrainResponse, IsotropicGrainIsDarkBetweenCrossedPolars) {
     SectionMounting mounting;
     mounting.slide = mounting.cover = constant_medium(Eigen::Vector3d::Constant(1.52));
     mounting.cement = constant_medium(Eigen::Vector3d::Constant(1.54));
-    const OpticalMedium garnet = constant_medium(Eigen::Vector3d::Constant(1.83));
+    const DispersiveMedium garnet = constant_medium(Eigen::Vector3d::Constant(1.83));
     MicroscopeSettings settings;
     settings.wavelengths_nm = {450.0, 550.0, 650.0};
     std::vector<double> crossed, parallel;
@@ -133,7 +133,7 @@ TEST(LayerStack, SinglePassAgreesWithCoherentInIndexMatchedStack) {
         Eigen::Matrix2d single_sum = Eigen::Matrix2d::Zero(), coherent_sum = Eigen::Matrix2d::Zero();
         for (double wavelength = band_start; wavelength < band_start + 10.0; wavelength += 0.25) {
             const std::vector<OpticalLayer> layers{isotropic_layer(1.53, 20.0),
-                                                   {principal_permittivity(n, Eigen::Vector3d::Zero(), axes), 30.0},
+                                                   {OpticalMedium{n.cast<std::complex<double>>(), axes}.permittivity(), 30.0},
                                                    isotropic_layer(1.535, 20.0)};
             single_sum += single_pass_jones(layers, 1, wavelength, xi, ambient).at(30.0).cwiseAbs2();
             coherent_sum += coherent_jones(layers, wavelength, xi, ambient).cwiseAbs2();
@@ -149,7 +149,7 @@ TEST(LayerStack, SinglePassAgreesWithCoherentInIndexMatchedStack) {
 TEST(LayerStack, AbsorbingPlateFollowsBeerLambert) {
     const double n = 1.6, kappa = 2e-3, d_um = 30.0, wavelength_nm = 500.0;
     const Eigen::Vector3d principal_n(1.6, 1.65, 1.7), principal_kappa(kappa, 0.0, 0.0);
-    const OpticalLayer layer{principal_permittivity(principal_n, principal_kappa, Eigen::Matrix3d::Identity()), d_um};
+    const OpticalLayer layer{OpticalMedium::from_n_kappa(principal_n, principal_kappa, Eigen::Matrix3d::Identity()).permittivity(), d_um};
     const Eigen::Matrix2cd jones = single_pass_jones({layer}, 0, wavelength_nm, Eigen::Vector2d::Zero()).at(d_um);
     // At ξ = 0, p is x̂ (the X axis, absorbing): the (p, p) entry.
     const std::complex<double> index(n, kappa);
@@ -170,7 +170,7 @@ TEST(LayerStack, NormalIncidenceClosedFormMatchesBerreman) {
     const double k0 = wavenumber_per_um(550.0), d_um = 20.0;
     for (const auto& [n, kappa] : crystals) {
         for (const Eigen::Vector3d& a : angles) {
-            const Eigen::Matrix3cd epsilon = principal_permittivity(n, kappa, euler_zyz_deg(a[0], a[1], a[2]));
+            const Eigen::Matrix3cd epsilon = OpticalMedium::from_n_kappa(n, kappa, euler_zyz_deg(a[0], a[1], a[2])).permittivity();
             const MediumWaves ambient = berreman_modes(air, Eigen::Vector2d::Zero());
             const MediumWaves closed = normal_incidence_waves(epsilon);
             const Eigen::Matrix2cd jones = forward_transmission(closed, ambient) * forward_propagation(closed, k0, d_um) *

@@ -38,8 +38,6 @@ struct ConoscopeSettings {
     void validate() const;
 };
 
-/// Principal indices along the indicatrix axes X, Y, Z at a wavelength (the mineral's dispersion).
-using PrincipalIndexFunction = std::function<Eigen::Vector3d(double wavelength_nm)>;
 
 /// The lab-frame direction of the wave that reaches image point (x, y) ∈ [−1, 1]² (x to the E, y to the
 /// N): tangential wavevector ξ = NA·(x, y) in units of k₀ (sin θ_air = NA·r).

@@ -20,10 +20,6 @@ struct OpticalLayer {
     double thickness_um = 0.0;
 };
 
-/// ε = R·diag((n + iκ)²)·Rᵀ for principal indices n and extinction coefficients κ along the indicatrix axes
-/// (the columns of `axes`, lab frame). Time dependence exp(−iωt): absorption has Im ε > 0 (Born & Wolf §15.5).
-Eigen::Matrix3cd principal_permittivity(const Eigen::Vector3d& principal_n, const Eigen::Vector3d& principal_kappa,
-                                        const Eigen::Matrix3d& axes);
 
 /// The single-pass Jones matrix of air | layers | air for the tangential wavevector ξ (units of k₀), split over
 /// the two modes of one layer, the "variable" one: J(d) = Σₘ term[m]·exp(i·phase_per_um[m]·d) for that layer's

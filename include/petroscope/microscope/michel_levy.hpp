@@ -31,7 +31,7 @@ struct MichelLevyStep {
 
 /// The plate the chart is computed with (its indicatrix axes: the X–Z section at 45°, slow NE–SW), and its
 /// birefringence at the reference wavelength.
-OpticalMedium michel_levy_plate(const MichelLevySettings& settings, double& birefringence_at_reference);
+DispersiveMedium michel_levy_plate(const MichelLevySettings& settings, double& birefringence_at_reference);
 
 /// The chart's colours at Γ = 0, step, 2·step, … ≤ max_retardation_nm, between crossed polars in parallel
 /// light, in `mounting`.

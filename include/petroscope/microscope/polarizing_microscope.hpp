@@ -5,6 +5,7 @@
 // incoherent with each other. Frames and angle senses: docs/conventions.md; the model: docs/orthoscope.md.
 #include "petroscope/microscope/layer_stack.hpp"
 #include "petroscope/minerals/mineral.hpp"
+#include "petroscope/optics/medium.hpp"
 
 #include <Eigen/Core>
 
@@ -16,22 +17,26 @@
 namespace petroscope {
 
 /// Principal indices (or extinction coefficients) along the indicatrix axes X, Y, Z at a wavelength in nm.
-using PrincipalFunction = std::function<Eigen::Vector3d(double wavelength_nm)>;
+using PrincipalIndexFunction = std::function<Eigen::Vector3d(double wavelength_nm)>;
 
-/// A homogeneous medium: principal n and κ and the indicatrix axes (columns, lab frame).
-struct OpticalMedium {
-    PrincipalFunction principal_n;
-    PrincipalFunction principal_kappa;  // empty: transparent
+/// A homogeneous medium over all wavelengths: principal n and κ as functions of λ and the indicatrix axes
+/// (columns, lab frame). At one wavelength it is an OpticalMedium (optics/medium.hpp).
+struct DispersiveMedium {
+    PrincipalIndexFunction principal_n;
+    PrincipalIndexFunction principal_kappa;  // empty: transparent
     Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();
 
-    static OpticalMedium of(const Mineral& mineral, const Eigen::Matrix3d& axes = Eigen::Matrix3d::Identity());
-    Eigen::Matrix3cd permittivity(double wavelength_nm) const;
+    /// The mineral's dispersion; the mineral must outlive the medium.
+    static DispersiveMedium of(const Mineral& mineral, const Eigen::Matrix3d& axes = Eigen::Matrix3d::Identity());
+    /// n + iκ along the axes at `wavelength_nm` (time dependence exp(−iωt): absorption has Im ε > 0).
+    OpticalMedium at(double wavelength_nm) const;
+    Eigen::Matrix3cd permittivity(double wavelength_nm) const { return at(wavelength_nm).permittivity(); }
 };
 
 /// Glass and cement around the crystal, from the condenser side up (typical thin section: 1 mm slide,
 /// a few µm of balsam on each face of the rock slice, a #1.5 cover glass of 170 µm).
 struct SectionMounting {
-    OpticalMedium slide, cement, cover;
+    DispersiveMedium slide, cement, cover;
     double slide_um = 1000.0, lower_cement_um = 5.0, upper_cement_um = 5.0, cover_um = 170.0;
 };
 
@@ -45,7 +50,7 @@ std::string_view plate_mineral_name(PlateKind kind);
 /// retardation over the whole field). Its slow vibration direction lies at `slow_deg` from E toward N.
 struct AccessoryPlate {
     PlateKind kind = PlateKind::gypsum;
-    OpticalMedium medium;  // axes already set: slow direction in the plane at slow_deg
+    DispersiveMedium medium;  // axes already set: slow direction in the plane at slow_deg
     double thickness_um = 0.0;
     double slow_deg = 45.0;
     std::string description;  // e.g. "gypsum (010) cleavage plate, 56.1 µm, Γ = 550 nm at 550 nm"
@@ -140,7 +145,7 @@ private:
 /// the coherent Jones matrix is computed for each thickness asked for. `optics` must outlive the response.
 class GrainResponse {
 public:
-    GrainResponse(const MicroscopeOptics& optics, const OpticalMedium& crystal);
+    GrainResponse(const MicroscopeOptics& optics, const DispersiveMedium& crystal);
     /// Transmission per wavelength of the settings, written to `out`.
     void transmission(double thickness_um, std::vector<double>& out) const;
 
@@ -152,7 +157,7 @@ private:
         bool propagating = true;
     };
     const MicroscopeOptics& optics_;
-    OpticalMedium crystal_;
+    DispersiveMedium crystal_;
     std::vector<Sample> samples_;  // single pass: [wavelength][direction]
 };
 

@@ -11,6 +11,8 @@ struct OpticalMedium {
     Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();       // columns: X, Y, Z in the lab frame
 
     static OpticalMedium isotropic(std::complex<double> n);
+    /// Principal indices n + iκ from the real parts n and the extinction coefficients κ.
+    static OpticalMedium from_n_kappa(const Eigen::Vector3d& n, const Eigen::Vector3d& kappa, const Eigen::Matrix3d& axes);
 
     bool is_isotropic() const;
     bool is_lossless() const;
