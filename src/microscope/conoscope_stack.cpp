@@ -1,6 +1,6 @@
 // The conoscope through the whole thin-section stack: each image point is the plane wave of its tangential
 // wavevector ξ = NA·(x, y) (in air), sent through the same optical train as the orthoscope's
-// (polarizing_microscope.hpp). One MicroscopeOptics per image point, single pass or exact 4×4.
+// (polarizing_microscope.hpp). One MicroscopeOptics per image point (what depends on the wavelength only is shared), single pass or exact 4×4.
 #include "conoscope_stack.hpp"
 #include "row_progress.hpp"
 
@@ -19,7 +19,7 @@ Image render_conoscope_through_stack(const ConoscopeSettings& settings, const Pr
     DispersiveMedium crystal;
     crystal.principal_n = principal_n;
     crystal.axes = settings.crystal_axes;
-    const SectionMounting& mounting = *settings.mounting;
+    const MicroscopeOptics common(microscope, *settings.mounting, {});
 
     const int size = settings.size_px;
     Image image(size, size, integrator != nullptr ? 3 : 1);
@@ -33,7 +33,7 @@ Image render_conoscope_through_stack(const ConoscopeSettings& settings, const Pr
             for (int column = 0; column < size; ++column) {
                 const Eigen::Vector2d xi = conoscope_tangential_wavevector(settings, column, row);
                 if (xi.squaredNorm() > aperture_squared) continue;
-                const MicroscopeOptics optics(microscope, mounting, {IlluminationSample{xi, 1.0}});
+                const MicroscopeOptics optics = common.for_directions({IlluminationSample{xi, 1.0}});
                 GrainResponse(optics, crystal).transmission(settings.thickness_um, spectrum);
                 if (integrator == nullptr) {
                     image.at(column, row, 0) = static_cast<float>(spectrum[0]);

@@ -33,6 +33,8 @@ PixelGrains pixel_grains(const ThinSection& section, double stage_deg) {
     const double angle = stage_deg * std::numbers::pi / 180.0;
     const double c = std::cos(angle), s = std::sin(angle);
     const double cx = 0.5 * width, cy = 0.5 * height;
+    // Outside the turned section: glass and balsam at the section's thickness in the middle of the field.
+    const auto outside_thickness_um = static_cast<float>(per_pixel ? section.section_thickness_at(width / 2, height / 2) : 0.0);
 #pragma omp parallel for schedule(static)
     for (int row = 0; row < height; ++row) {
         for (int column = 0; column < width; ++column) {
@@ -44,7 +46,7 @@ PixelGrains pixel_grains(const ThinSection& section, double stage_deg) {
             const std::size_t index = static_cast<std::size_t>(row) * width + column;
             if (sx < 0 || sy < 0 || sx >= width || sy >= height) {
                 result.grain[index] = outside;
-                if (per_pixel) result.thickness_um[index] = static_cast<float>(section.section_thickness_at(width / 2, height / 2));
+                if (per_pixel) result.thickness_um[index] = outside_thickness_um;
                 continue;
             }
             const int grain = section.grain_index_of_label[section.labels[static_cast<std::size_t>(sy) * width + sx]];

@@ -83,24 +83,45 @@ MicroscopeOptics::MicroscopeOptics(const MicroscopeSettings& settings, const Sec
     for (const double wavelength_nm : settings.wavelengths_nm) {
         plate_jones_lab_.push_back(settings.plate ? plate_jones_lab(*settings.plate, wavelength_nm, settings.exact)
                                                   : Eigen::Matrix2cd::Identity());
+        mounting_epsilon_.push_back({mounting.slide.permittivity(wavelength_nm), mounting.cement.permittivity(wavelength_nm),
+                                     mounting.cover.permittivity(wavelength_nm)});
     }
-    if (settings.exact) return;
-    for (std::size_t w = 0; w < settings.wavelengths_nm.size(); ++w) {
-        const double wavelength_nm = settings.wavelengths_nm[w];
-        const double k0 = wavenumber_per_um(wavelength_nm);
+    build_paths();
+}
+
+MicroscopeOptics MicroscopeOptics::for_directions(std::vector<IlluminationSample> directions) const {
+    MicroscopeOptics optics(*this, std::move(directions));
+    optics.build_paths();
+    return optics;
+}
+
+MicroscopeOptics::MicroscopeOptics(const MicroscopeOptics& common, std::vector<IlluminationSample> directions)
+    : settings_(common.settings_),
+      mounting_(common.mounting_),
+      directions_(std::move(directions)),
+      plate_jones_lab_(common.plate_jones_lab_),
+      mounting_epsilon_(common.mounting_epsilon_) {}
+
+void MicroscopeOptics::build_paths() {
+    if (settings_.exact) return;
+    paths_.clear();
+    paths_.reserve(settings_.wavelengths_nm.size() * directions_.size());
+    for (std::size_t w = 0; w < settings_.wavelengths_nm.size(); ++w) {
+        const double k0 = wavenumber_per_um(settings_.wavelengths_nm[w]);
+        const MountingPermittivity& epsilon = mounting_epsilon_[w];
         for (const IlluminationSample& direction : directions_) {
             const MediumWaves air = berreman_modes(Eigen::Matrix3cd::Identity(), direction.xi);
-            const MediumWaves slide = berreman_modes(mounting.slide.permittivity(wavelength_nm), direction.xi);
-            const MediumWaves cover = berreman_modes(mounting.cover.permittivity(wavelength_nm), direction.xi);
+            const MediumWaves slide = berreman_modes(epsilon.slide, direction.xi);
+            const MediumWaves cover = berreman_modes(epsilon.cover, direction.xi);
             Path path;
-            path.cement = berreman_modes(mounting.cement.permittivity(wavelength_nm), direction.xi);
+            path.cement = berreman_modes(epsilon.cement, direction.xi);
             path.k0_per_um = k0;
-            path.into_crystal = forward_propagation(path.cement, k0, mounting.lower_cement_um) *
-                                forward_transmission(slide, path.cement) * forward_propagation(slide, k0, mounting.slide_um) *
+            path.into_crystal = forward_propagation(path.cement, k0, mounting_.lower_cement_um) *
+                                forward_transmission(slide, path.cement) * forward_propagation(slide, k0, mounting_.slide_um) *
                                 forward_transmission(air, slide) * incident(direction.xi);
             path.to_eye = after_section(w, direction.xi) * forward_transmission(cover, air) *
-                          forward_propagation(cover, k0, mounting.cover_um) * forward_transmission(path.cement, cover) *
-                          forward_propagation(path.cement, k0, mounting.upper_cement_um);
+                          forward_propagation(cover, k0, mounting_.cover_um) * forward_transmission(path.cement, cover) *
+                          forward_propagation(path.cement, k0, mounting_.upper_cement_um);
             paths_.push_back(path);
         }
     }
@@ -129,13 +150,14 @@ double MicroscopeOptics::analyzed_intensity(const Eigen::Matrix2cd& section_jone
     return (after_section(wavelength, xi) * section_jones_sp * incident(xi)).squaredNorm();
 }
 
-std::vector<OpticalLayer> MicroscopeOptics::section_layers(double wavelength_nm, const Eigen::Matrix3cd& crystal,
+std::vector<OpticalLayer> MicroscopeOptics::section_layers(std::size_t wavelength, const Eigen::Matrix3cd& crystal,
                                                            double crystal_thickness_um) const {
-    return {{mounting_.slide.permittivity(wavelength_nm), mounting_.slide_um},
-            {mounting_.cement.permittivity(wavelength_nm), mounting_.lower_cement_um},
+    const MountingPermittivity& epsilon = mounting_epsilon_[wavelength];
+    return {{epsilon.slide, mounting_.slide_um},
+            {epsilon.cement, mounting_.lower_cement_um},
             {crystal, crystal_thickness_um},
-            {mounting_.cement.permittivity(wavelength_nm), mounting_.upper_cement_um},
-            {mounting_.cover.permittivity(wavelength_nm), mounting_.cover_um}};
+            {epsilon.cement, mounting_.upper_cement_um},
+            {epsilon.cover, mounting_.cover_um}};
 }
 
 GrainResponse::GrainResponse(const MicroscopeOptics& optics, const DispersiveMedium& crystal)
@@ -172,7 +194,7 @@ void GrainResponse::transmission(double thickness_um, std::vector<double>& out) 
     if (settings.exact) {
         for (std::size_t w = 0; w < wavelength_count; ++w) {
             const double wavelength_nm = settings.wavelengths_nm[w];
-            const std::vector<OpticalLayer> layers = optics_.section_layers(wavelength_nm, crystal_.permittivity(wavelength_nm), thickness_um);
+            const std::vector<OpticalLayer> layers = optics_.section_layers(w, crystal_.permittivity(wavelength_nm), thickness_um);
             for (std::size_t k = 0; k < directions.size(); ++k) {
                 const Eigen::Matrix2cd jones = coherent_jones(layers, wavelength_nm, directions[k].xi);
                 out[w] += directions[k].weight * optics_.analyzed_intensity(jones, w, k);

@@ -101,9 +101,12 @@ struct MicroscopeSettings {
 class MicroscopeOptics {
 public:
     MicroscopeOptics(const MicroscopeSettings& settings, const SectionMounting& mounting);
-    /// The same for given directions instead of the condenser's (the conoscope: one direction per image point).
+    /// The same for given directions instead of the condenser's.
     MicroscopeOptics(const MicroscopeSettings& settings, const SectionMounting& mounting,
                      std::vector<IlluminationSample> directions);
+    /// These optics for other directions, reusing what depends on the wavelength only (the plate, the
+    /// mounting's permittivities): the conoscope builds one per image point.
+    MicroscopeOptics for_directions(std::vector<IlluminationSample> directions) const;
 
     const MicroscopeSettings& settings() const { return settings_; }
     const SectionMounting& mounting() const { return mounting_; }
@@ -121,15 +124,24 @@ public:
     }
     /// Exact mode: the analyzed intensity for the section's coherent Jones matrix (s, p bases of the air).
     double analyzed_intensity(const Eigen::Matrix2cd& section_jones_sp, std::size_t wavelength, std::size_t direction) const;
-    /// The section's layers at a wavelength, the crystal (index 2) with `crystal` and `crystal_thickness_um`.
-    std::vector<OpticalLayer> section_layers(double wavelength_nm, const Eigen::Matrix3cd& crystal, double crystal_thickness_um) const;
+    /// The section's layers at wavelength index `wavelength`, the crystal (index 2) with `crystal` and
+    /// `crystal_thickness_um`.
+    std::vector<OpticalLayer> section_layers(std::size_t wavelength, const Eigen::Matrix3cd& crystal, double crystal_thickness_um) const;
 
 private:
     const MicroscopeSettings& settings_;
     const SectionMounting& mounting_;
     std::vector<IlluminationSample> directions_;
     std::vector<Eigen::Matrix2cd> plate_jones_lab_;  // per wavelength, lab (x, y) frame
+    struct MountingPermittivity {
+        Eigen::Matrix3cd slide, cement, cover;
+    };
+    std::vector<MountingPermittivity> mounting_epsilon_;  // per wavelength
     std::vector<Path> paths_;
+
+    MicroscopeOptics(const MicroscopeOptics& common, std::vector<IlluminationSample> directions);
+    /// The single-pass paths of every wavelength and direction (none in exact mode).
+    void build_paths();
 
     /// Rows taking the transmitted (s, p) amplitudes in the air above the section to what the eye receives:
     /// through the plate, then onto the analyzer (first row; second zero) or both lab components (no analyzer).
