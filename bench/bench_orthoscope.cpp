@@ -11,7 +11,7 @@ namespace petroscope {
 namespace {
 
 const MineralCatalog& catalog() {
-    static const MineralCatalog instance = load_mineral_catalog(std::filesystem::path(PETROSCOPE_SOURCE_DIR) / "minerals");
+    static const MineralCatalog instance = load_mineral_catalog(minerals_directory());
     return instance;
 }
 
