@@ -1,7 +1,6 @@
 #include "petroscope/microscope/orthoscope.hpp"
 
 #include "petroscope/core/error.hpp"
-#include "petroscope/core/text.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -77,9 +76,7 @@ void OrthoscopeSettings::validate() const {
     for (const double angle : {m.polars.polarizer_deg, m.polars.analyzer_deg, m.stage_deg}) {
         if (!std::isfinite(angle)) throw InputError("angles must be finite numbers of degrees");
     }
-    if (!(m.condenser_na >= 0.0 && m.condenser_na < 1.0)) {
-        throw InputError("condenser NA " + format_number(m.condenser_na) + " is out of range (expected 0 <= NA < 1)");
-    }
+    condenser_samples(m.condenser_na, 0);  // checks the NA (its own message) without sampling the cone
     if (m.wavelengths_nm.empty()) throw InputError("no wavelengths to evaluate");
     for (const double wavelength : m.wavelengths_nm) {
         if (!(wavelength > 0.0) || !std::isfinite(wavelength)) throw InputError("wavelengths must be positive numbers of nanometres");

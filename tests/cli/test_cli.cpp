@@ -353,6 +353,8 @@ TEST_F(Cli, OrthoscopeRejectsBadInputAndLeavesNoFiles) {
     expect_rejected("orthoscope --section " + kGranite + " --condenser-na 1.2 -o " + png, {"condenser NA", "0 <= NA < 1"});
     expect_rejected("orthoscope --section " + kGranite + " --thickness 30 -o " + png, {"--thickness"});
     expect_rejected("orthoscope --section " + kGranite + " --ppl --xpl -o " + png, {"excludes"});
+    expect_rejected("orthoscope --section " + kGranite + " --condenser-na 0.2 --condenser-rings 65 -o " + png, {"--condenser-rings", "0 (automatic) to 64"});
+    expect_rejected("orthoscope --section " + kGranite + " --exposure 0 -o " + png, {"--exposure"});
     expect_rejected("orthoscope --section " + kGranite + " -o " + quoted(out() / "x.jpg"), {"x.jpg"});
 }
 
@@ -395,6 +397,10 @@ TEST_F(Cli, ChartWritesImageCsvAndSidecar) {
     EXPECT_NEAR(darkest->first, 550.0, 40.0);
     expect_rejected("chart --step 0 -o " + quoted(out() / "bad.png"), {"retardation step"});
     expect_rejected("chart --mineral almandine -o " + quoted(out() / "bad.png"), {"isotropic"});
+    expect_rejected("chart --max-thickness 0um -o " + quoted(out() / "bad.png"), {"--max-thickness", "must be > 0"});
+    expect_rejected("chart --max-retardation 30000 -o " + quoted(out() / "bad.png"), {"maximum retardation", "0 < max <= 20000"});
+    // An unwritable CSV fails before any work, and the image is not left behind either.
+    expect_rejected("chart --csv " + quoted(out() / "no-such-folder" / "c.csv") + " -o " + quoted(out() / "bad.png"), {"no-such-folder"});
 }
 
 }  // namespace
