@@ -60,10 +60,8 @@ OpticalMedium parse_medium(const JsonValue& medium, double wavelength_nm, const 
         throw name.error(e.what());
     }
     const Eigen::Vector3d n = mineral->principal_n(wavelength_nm);
-    const Eigen::Vector3d kappa = mineral->principal_kappa(wavelength_nm);
-    for (int i = 0; i < 3; ++i) result.principal_n[i] = complex(n[i], kappa[i]);
     if (!n.allFinite() || n.minCoeff() < 1.0) throw name.error(mineral->name + " has no physical index at this wavelength");
-    return result;
+    return OpticalMedium::from_n_kappa(n, mineral->principal_kappa(wavelength_nm), result.axes);
 }
 
 // Polarization of the incident wave (docs/interface.md).
