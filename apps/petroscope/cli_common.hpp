@@ -54,12 +54,10 @@ auto with_option(const std::string& option, Parse parse) {
 std::string joined_command_line(int argc, char** argv);
 
 void add_minerals_command(CLI::App& app, std::string& minerals_dir);
-void add_conoscope_command(CLI::App& app, const std::string& minerals_dir, const std::string& command_line);
 void add_interface_command(CLI::App& app, const std::string& minerals_dir);
 void add_verify_command(CLI::App& app, const std::string& minerals_dir);
-void add_conical_command(CLI::App& app, const std::string& minerals_dir, const std::string& command_line);
 void add_section_command(CLI::App& app, const std::string& minerals_dir);
 void add_chart_command(CLI::App& app, const std::string& minerals_dir, const std::string& command_line);
-void add_orthoscope_command(CLI::App& app, const std::string& minerals_dir, const std::string& command_line);
+void add_sweep_command(CLI::App& app, const std::string& minerals_dir);
 
 }  // namespace petroscope::cli

@@ -1,6 +1,7 @@
 #include "cli_light.hpp"
 
 #include "cli_common.hpp"
+#include "frame_command.hpp"
 
 #include "petroscope/core/units.hpp"
 #include "petroscope/io/data_files.hpp"
@@ -9,7 +10,8 @@
 namespace petroscope::cli {
 
 void add_light_options(CLI::App* command, LightOptions& options) {
-    command->add_option("--wavelength", options.wavelength, "Monochromatic light at this wavelength (589nm, 0.633um); default: white light");
+    command->add_option("--wavelength", options.wavelength, "Monochromatic light at this wavelength (589nm, 0.633um); default: white light")
+        ->type_name(wavelength_type);
     command->add_option("--wavelengths", options.wavelength_grid, "White-light grid START:END:STEP in nm")->capture_default_str();
     command->add_option("--illuminant", options.illuminant, "White light: D65, A (halogen) or blackbody:3200K")->capture_default_str();
     command->add_flag("--no-white-balance", options.no_white_balance, "Keep the colour cast of the illuminant");

@@ -1,6 +1,7 @@
 // petroscope conical: the screen behind a biaxial slab cut perpendicular to an optic axis (internal conical
 // refraction), in wave optics (Belsky–Khapalyuk–Berry) or ray optics (the exact interface model).
 #include "cli_common.hpp"
+#include "frame_command.hpp"
 
 #include "petroscope/core/error.hpp"
 #include "petroscope/core/text.hpp"
@@ -8,33 +9,42 @@
 #include "petroscope/io/data_files.hpp"
 #include "petroscope/microscope/conical_ray.hpp"
 #include "petroscope/microscope/conical_wave.hpp"
+#include "petroscope/microscope/frame_measurements.hpp"
 
-#include <chrono>
 #include <cmath>
-#include <iostream>
 #include <memory>
 #include <numbers>
 
 namespace petroscope::cli {
 namespace {
 
-struct ConicalOptions {
-    std::string crystal = "KGd(WO4)2";
-    std::string length = "20mm";
-    std::string wavelength = "633nm";
-    std::string mode = "wave";
-    std::string beam = "gaussian";
-    std::string waist = "40um";
-    std::string pinhole = "25um";
-    std::string filter = "50mm";
-    std::string polarization = "unpolarized";
-    double z = 0.0;
-    double rotate_deg = 0.0;
-    double tilt_deg = 0.0;
-    std::string screen_distance = "50mm";
-    long long rays = 200000;
-    int size_px = 1024;
-    std::string output;
+class ConicalOptions final : public FrameOptions {
+public:
+    std::string command() const override { return "conical"; }
+    std::string description() const override {
+        return "The screen behind a biaxial slab cut perpendicular to an optic axis: the double ring of internal conical\n"
+               "refraction, in wave optics (paraxial Belsky-Khapalyuk-Berry theory, Gaussian beam or pinhole) or in ray\n"
+               "optics (rays through a pinhole in a collimating filter, traced with the exact interface model).";
+    }
+    void add_options(CLI::App* command) override;
+    PreparedFrame prepare(FrameContext& context) const override;
+
+private:
+    std::string crystal_ = "KGd(WO4)2";
+    std::string length_ = "20mm";
+    std::string wavelength_ = "633nm";
+    std::string mode_ = "wave";
+    std::string beam_ = "gaussian";
+    std::string waist_ = "40um";
+    std::string pinhole_ = "25um";
+    std::string filter_ = "50mm";
+    std::string polarization_ = "unpolarized";
+    double z_ = 0.0;
+    double rotate_deg_ = 0.0;
+    double tilt_deg_ = 0.0;
+    std::string screen_distance_ = "50mm";
+    long long rays_ = 200000;
+    int size_px_ = 1024;
 };
 
 // "unpolarized", "circular" (right), "circular:left", "linear:ANGLE" (degrees from +x): a Stokes vector with
@@ -68,121 +78,130 @@ Image normalised_gray(const Image& image) {
     return rgb;
 }
 
-void run_conical(const ConicalOptions& options, const std::string& minerals_dir, const std::string& command_line) {
-    const auto started = std::chrono::steady_clock::now();
-    const double length_um = positive_length_um("--length", options.length);
-    const double wavelength_nm = with_option("--wavelength", [&] { return parse_wavelength_nm(options.wavelength); });
-    if (!(wavelength_nm > 0.0)) throw InputError("--wavelength must be > 0");
-    if (options.size_px < 64 || options.size_px > 4096) throw InputError("--size " + std::to_string(options.size_px) + " is out of range (64 to 4096)");
-    if (options.mode != "wave" && options.mode != "ray") throw InputError("--mode '" + options.mode + "': expected wave or ray");
-    if (options.beam != "gaussian" && options.beam != "pinhole") throw InputError("--beam '" + options.beam + "': expected gaussian or pinhole");
-    if (!std::isfinite(options.z)) throw InputError("--z must be a finite number");
-    const Eigen::Vector4d stokes = parse_polarization(options.polarization);
-    ImageResult result(options.output);
+// The rings' radii (µm; bright outer, dark, bright inner) and the mean of the normalised screen.
+nlohmann::json ring_measurements(double outer_bright_um, double dark_um, double inner_bright_um, const Image& screen) {
+    return {{"ring_outer_bright_um", outer_bright_um}, {"ring_dark_um", dark_um}, {"ring_inner_bright_um", inner_bright_um},
+            {"mean_luminance", mean_colour(screen, false).luminance}};
+}
 
-    const MineralCatalog catalog = load_mineral_catalog(minerals_directory(minerals_dir));
-    const Mineral& mineral = catalog.find(options.crystal);
+PreparedFrame ConicalOptions::prepare(FrameContext& context) const {
+    const double length_um = positive_length_um("--length", length_);
+    const double wavelength_nm = with_option("--wavelength", [&] { return parse_wavelength_nm(wavelength_); });
+    if (!(wavelength_nm > 0.0)) throw InputError("--wavelength must be > 0");
+    if (size_px_ < 64 || size_px_ > 4096) throw InputError("--size " + std::to_string(size_px_) + " is out of range (64 to 4096)");
+    if (mode_ != "wave" && mode_ != "ray") throw InputError("--mode '" + mode_ + "': expected wave or ray");
+    if (beam_ != "gaussian" && beam_ != "pinhole") throw InputError("--beam '" + beam_ + "': expected gaussian or pinhole");
+    if (!std::isfinite(z_)) throw InputError("--z must be a finite number");
+    const Eigen::Vector4d stokes = parse_polarization(polarization_);
+
+    const Mineral& mineral = context.catalog().find(crystal_);
     if (mineral.optical_class != OpticalClass::biaxial) {
         throw InputError(mineral.name + " is " + std::string(optical_class_name(mineral.optical_class)) +
                          ": conical refraction needs a biaxial crystal (e.g. KGd(WO4)2, KY(WO4)2, KTP, LBO, aragonite)");
     }
-    for (const auto& warning : mineral.range_warnings({wavelength_nm})) std::cerr << "petroscope: warning: " << warning << '\n';
+    PreparedFrame prepared;
+    for (const auto& warning : mineral.range_warnings({wavelength_nm})) prepared.notes.push_back("warning: " + warning);
     const Eigen::Vector3d n = mineral.principal_n(wavelength_nm);
     const double chi = conical_cone_angle_rad(n);
     const double a = 0.5 * std::tan(chi);
     const double ring_radius_um = a * length_um;
-    nlohmann::json sidecar{{"program", "petroscope 0.1.0"}, {"command", "conical"}, {"command_line", command_line},
+    nlohmann::json sidecar{{"program", "petroscope 0.1.0"}, {"command", "conical"},
                            {"crystal", {{"name", mineral.name}, {"file", mineral.file}, {"principal_n_xyz", {n[0], n[1], n[2]}}}},
-                           {"wavelength_nm", wavelength_nm}, {"length_um", length_um}, {"mode", options.mode},
-                           {"polarization", options.polarization}, {"cone_angle_chi_deg", chi * 180.0 / std::numbers::pi},
-                           {"A_rad", a}, {"R0_um", ring_radius_um}, {"size_px", options.size_px}};
-    Image screen;
-    if (options.mode == "wave") {
-        const bool gaussian = options.beam == "gaussian";
-        const double scale_um = gaussian ? positive_length_um("--waist", options.waist) : positive_length_um("--pinhole", options.pinhole);
+                           {"wavelength_nm", wavelength_nm}, {"length_um", length_um}, {"mode", mode_},
+                           {"polarization", polarization_}, {"cone_angle_chi_deg", chi * 180.0 / std::numbers::pi},
+                           {"A_rad", a}, {"R0_um", ring_radius_um}, {"size_px", size_px_},
+                           {"image_frame", "x to the right, y up; centred on the (predicted) ring centre, which lies R0 from the point below "
+                                           "the pinhole toward the second binormal"}};
+    const std::string summary = mode_ + " optics, R0 = " + format_number(ring_radius_um) + " um";
+    const int size_px = size_px_;
+    if (mode_ == "wave") {
+        const bool gaussian = beam_ == "gaussian";
+        const double scale_um = gaussian ? positive_length_um("--waist", waist_) : positive_length_um("--pinhole", pinhole_);
         ConicalWaveParameters parameters;
         parameters.beam = gaussian ? ConicalBeam::gaussian : ConicalBeam::pinhole;
         parameters.rho0 = ring_radius_um / scale_um;
-        parameters.z = options.z;
-        const double half_width = parameters.rho0 + 4.0 + 1.5 * std::abs(options.z);
-        const ConicalProfile profile = conical_profile(parameters, half_width * std::numbers::sqrt2, 4 * options.size_px);
-        screen = conical_screen(profile, stokes, options.size_px, half_width);
-        const ConicalRings rings = conical_rings(profile, parameters.rho0);
-        sidecar["beam"] = options.beam;
+        parameters.z = z_;
+        const double half_width = parameters.rho0 + 4.0 + 1.5 * std::abs(z_);
+        sidecar["beam"] = beam_;
         sidecar["scale_um"] = scale_um;
         sidecar["rho0"] = parameters.rho0;
-        sidecar["Z"] = options.z;
+        sidecar["Z"] = z_;
         sidecar["image_half_width_um"] = half_width * scale_um;
-        sidecar["rings"] = {{"units", "um from the ring centre (rho in units of the beam scale: divide by scale_um)"},
-                            {"outer_bright", rings.outer_bright * scale_um}, {"dark", rings.dark * scale_um},
-                            {"inner_bright", rings.inner_bright * scale_um}};
-        sidecar["power"] = conical_power(profile);
         sidecar["pixel_values"] = "intensity |D|^2 of the paraxial theory (physics notes §7), normalised so that the brightest pixel is 1";
-    } else {
-        ConicalRaySettings settings;
-        settings.principal_n = n;
-        settings.slab_um = length_um;
-        settings.rotate_deg = options.rotate_deg;
-        settings.tilt_deg = options.tilt_deg;
-        settings.pinhole_radius_um = positive_length_um("--pinhole", options.pinhole);
-        settings.filter_um = positive_length_um("--filter", options.filter);
-        settings.screen_distance_um = positive_length_um("--screen-distance", options.screen_distance);
-        settings.stokes = stokes;
-        if (options.rays < 1 || options.rays > 100000000) throw InputError("--rays must be between 1 and 1e8");
-        settings.rays = options.rays;
-        settings.size_px = options.size_px;
-        const ConicalRayResult traced = trace_conical_rays(settings, [](double fraction) { show_progress("tracing", fraction); });
-        screen = traced.screen;
-        sidecar["pinhole_um"] = settings.pinhole_radius_um;
-        sidecar["filter_um"] = settings.filter_um;
-        sidecar["screen_distance_um"] = settings.screen_distance_um;
-        sidecar["rotate_deg"] = settings.rotate_deg;
-        sidecar["tilt_deg"] = settings.tilt_deg;
-        sidecar["rays"] = settings.rays;
-        sidecar["image_half_width_um"] = 2.0 * ring_radius_um;
-        sidecar["image_centre_um"] = {traced.ring_centre_um.x(), traced.ring_centre_um.y()};
-        sidecar["pinhole_point_um"] = {traced.pinhole_point_um.x(), traced.pinhole_point_um.y()};
-        sidecar["rings"] = {{"units", "um from the measured ring centre"},
-                            {"centre_um", {traced.rings.centre_um.x(), traced.rings.centre_um.y()}},
-                            {"outer_bright", traced.rings.outer_bright_um}, {"dark", traced.rings.dark_um},
-                            {"inner_bright", traced.rings.inner_bright_um}};
-        sidecar["max_interface_power_sum"] = traced.max_interface_power_sum;
-        sidecar["pixel_values"] = "collected ray power per pixel, normalised so that the brightest pixel is 1";
+        prepared.render = [=](const ProgressCallback&) {
+            const ConicalProfile profile = conical_profile(parameters, half_width * std::numbers::sqrt2, 4 * size_px);
+            const ConicalRings rings = conical_rings(profile, parameters.rho0);
+            RenderedFrame frame{normalised_gray(conical_screen(profile, stokes, size_px, half_width)), sidecar, {}, summary};
+            frame.sidecar["rings"] = {{"units", "um from the ring centre (rho in units of the beam scale: divide by scale_um)"},
+                                      {"outer_bright", rings.outer_bright * scale_um}, {"dark", rings.dark * scale_um},
+                                      {"inner_bright", rings.inner_bright * scale_um}};
+            frame.sidecar["power"] = conical_power(profile);
+            frame.measurements = ring_measurements(rings.outer_bright * scale_um, rings.dark * scale_um, rings.inner_bright * scale_um,
+                                                   frame.linear_rgb);
+            return frame;
+        };
+        return prepared;
     }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    sidecar["seconds"] = seconds;
-    sidecar["image_frame"] = "x to the right, y up; centred on the (predicted) ring centre, which lies R0 from the point below the pinhole toward the second binormal";
-    result.write(normalised_gray(screen), sidecar);
-    std::cerr << "petroscope: wrote " << options.output << " and " << options.output << ".json (" << options.mode << " optics, R0 = "
-              << ring_radius_um << " um, " << seconds << " s)\n";
+    ConicalRaySettings settings;
+    settings.principal_n = n;
+    settings.slab_um = length_um;
+    settings.rotate_deg = rotate_deg_;
+    settings.tilt_deg = tilt_deg_;
+    settings.pinhole_radius_um = positive_length_um("--pinhole", pinhole_);
+    settings.filter_um = positive_length_um("--filter", filter_);
+    settings.screen_distance_um = positive_length_um("--screen-distance", screen_distance_);
+    settings.stokes = stokes;
+    if (rays_ < 1 || rays_ > 100000000) throw InputError("--rays must be between 1 and 1e8");
+    settings.rays = rays_;
+    settings.size_px = size_px_;
+    sidecar["pinhole_um"] = settings.pinhole_radius_um;
+    sidecar["filter_um"] = settings.filter_um;
+    sidecar["screen_distance_um"] = settings.screen_distance_um;
+    sidecar["rotate_deg"] = settings.rotate_deg;
+    sidecar["tilt_deg"] = settings.tilt_deg;
+    sidecar["rays"] = settings.rays;
+    sidecar["image_half_width_um"] = 2.0 * ring_radius_um;
+    sidecar["pixel_values"] = "collected ray power per pixel, normalised so that the brightest pixel is 1";
+    prepared.render = [=](const ProgressCallback& progress) {
+        const ConicalRayResult traced = trace_conical_rays(settings, progress);
+        RenderedFrame frame{normalised_gray(traced.screen), sidecar, {}, summary};
+        frame.sidecar["image_centre_um"] = {traced.ring_centre_um.x(), traced.ring_centre_um.y()};
+        frame.sidecar["pinhole_point_um"] = {traced.pinhole_point_um.x(), traced.pinhole_point_um.y()};
+        frame.sidecar["rings"] = {{"units", "um from the measured ring centre"},
+                                  {"centre_um", {traced.rings.centre_um.x(), traced.rings.centre_um.y()}},
+                                  {"outer_bright", traced.rings.outer_bright_um}, {"dark", traced.rings.dark_um},
+                                  {"inner_bright", traced.rings.inner_bright_um}};
+        frame.sidecar["max_interface_power_sum"] = traced.max_interface_power_sum;
+        frame.measurements = ring_measurements(traced.rings.outer_bright_um, traced.rings.dark_um, traced.rings.inner_bright_um,
+                                               frame.linear_rgb);
+        frame.measurements["ring_centre_x_um"] = traced.rings.centre_um.x();
+        frame.measurements["ring_centre_y_um"] = traced.rings.centre_um.y();
+        return frame;
+    };
+    return prepared;
+}
+
+void ConicalOptions::add_options(CLI::App* command) {
+    command->add_option("--crystal", crystal_, "Biaxial mineral (KGd(WO4)2, KY(WO4)2, KTP, LBO, aragonite, …)")->capture_default_str();
+    command->add_option("--length", length_, "Slab thickness l along the optic axis")->capture_default_str()->type_name(length_type);
+    command->add_option("--wavelength", wavelength_, "Wavelength")->capture_default_str()->type_name(wavelength_type);
+    command->add_option("--mode", mode_, "wave or ray")->capture_default_str();
+    command->add_option("--beam", beam_, "Wave mode: gaussian (waist --waist) or pinhole (radius --pinhole)")->capture_default_str();
+    command->add_option("--waist", waist_, "Gaussian beam scale w, E(r) = exp(-r^2/2w^2)")->capture_default_str()->type_name(length_type);
+    command->add_option("--pinhole", pinhole_, "Pinhole radius R")->capture_default_str()->type_name(length_type);
+    command->add_option("--filter", filter_, "Ray mode: thickness h of the filter holding the pinhole (rays tilt by at most ~2R/h)")
+        ->capture_default_str()->type_name(length_type);
+    command->add_option("--polarization", polarization_, "unpolarized, linear:ANGLE (degrees from +x), circular[:left]")->capture_default_str();
+    command->add_option("--z", z_, "Wave mode: observation plane Z (dimensionless, physics notes §7; 0 = focal image plane)")->capture_default_str();
+    command->add_option("--rotate-deg", rotate_deg_, "Ray mode: turn the slab about its optic axis")->capture_default_str();
+    command->add_option("--tilt-deg", tilt_deg_, "Ray mode: tilt the optic axis away from the slab normal")->capture_default_str();
+    command->add_option("--screen-distance", screen_distance_, "Ray mode: screen distance D behind the slab")->capture_default_str()->type_name(length_type);
+    command->add_option("--rays", rays_, "Ray mode: number of rays")->capture_default_str();
+    command->add_option("--size", size_px_, "Image size in pixels (64 to 4096)")->capture_default_str();
 }
 
 }  // namespace
 
-void add_conical_command(CLI::App& app, const std::string& minerals_dir, const std::string& command_line) {
-    auto options = std::make_shared<ConicalOptions>();
-    CLI::App* command = app.add_subcommand(
-        "conical",
-        "The screen behind a biaxial slab cut perpendicular to an optic axis: the double ring of internal conical\n"
-        "refraction, in wave optics (paraxial Belsky-Khapalyuk-Berry theory, Gaussian beam or pinhole) or in ray\n"
-        "optics (rays through a pinhole in a collimating filter, traced with the exact interface model).");
-    command->add_option("--crystal", options->crystal, "Biaxial mineral (KGd(WO4)2, KY(WO4)2, KTP, LBO, aragonite, …)")->capture_default_str();
-    command->add_option("--length", options->length, "Slab thickness l along the optic axis")->capture_default_str();
-    command->add_option("--wavelength", options->wavelength, "Wavelength")->capture_default_str();
-    command->add_option("--mode", options->mode, "wave or ray")->capture_default_str();
-    command->add_option("--beam", options->beam, "Wave mode: gaussian (waist --waist) or pinhole (radius --pinhole)")->capture_default_str();
-    command->add_option("--waist", options->waist, "Gaussian beam scale w, E(r) = exp(-r^2/2w^2)")->capture_default_str();
-    command->add_option("--pinhole", options->pinhole, "Pinhole radius R")->capture_default_str();
-    command->add_option("--filter", options->filter, "Ray mode: thickness h of the filter holding the pinhole (rays tilt by at most ~2R/h)")->capture_default_str();
-    command->add_option("--polarization", options->polarization, "unpolarized, linear:ANGLE (degrees from +x), circular[:left]")->capture_default_str();
-    command->add_option("--z", options->z, "Wave mode: observation plane Z (dimensionless, physics notes §7; 0 = focal image plane)")->capture_default_str();
-    command->add_option("--rotate-deg", options->rotate_deg, "Ray mode: turn the slab about its optic axis")->capture_default_str();
-    command->add_option("--tilt-deg", options->tilt_deg, "Ray mode: tilt the optic axis away from the slab normal")->capture_default_str();
-    command->add_option("--screen-distance", options->screen_distance, "Ray mode: screen distance D behind the slab")->capture_default_str();
-    command->add_option("--rays", options->rays, "Ray mode: number of rays")->capture_default_str();
-    command->add_option("--size", options->size_px, "Image size in pixels (64 to 4096)")->capture_default_str();
-    command->add_option("-o,--output", options->output, "Output image (.png, .exr, .tif) and its JSON sidecar")->required();
-    command->callback([options, &minerals_dir, command_line] { run_conical(*options, minerals_dir, command_line); });
-}
+std::unique_ptr<FrameOptions> make_conical_options() { return std::make_unique<ConicalOptions>(); }
 
 }  // namespace petroscope::cli

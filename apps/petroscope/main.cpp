@@ -1,6 +1,7 @@
 // petroscope: a physically exact simulator of the polarizing microscope. This file only wires the
 // subcommands together; each lives in its own command_*.cpp.
 #include "cli_common.hpp"
+#include "frame_command.hpp"
 
 #include "petroscope/core/error.hpp"
 
@@ -22,20 +23,22 @@ int main(int argc, char** argv) {
         "  petroscope verify                                           (the interface model's verification suite)\n"
         "  petroscope conical --crystal KGW --length 20mm --wavelength 633nm -o ring.png\n"
         "  petroscope orthoscope --section thin_sections/granite --plate gypsum -o granite.png\n"
-        "  petroscope chart --csv chart.csv -o chart.png"};
+        "  petroscope chart --csv chart.csv -o chart.png\n"
+        "  petroscope sweep conoscope --mineral calcite --cut optic-axis --tilt-deg 20 --vary azimuth-deg=0:330:30 -o sweep/"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "petroscope 0.1.0");
     std::string minerals_dir;
     app.add_option("--minerals-dir", minerals_dir, "Folder of mineral records (default: $PETROSCOPE_MINERALS or the minerals/ folder of the source tree)");
     const std::string command_line = petroscope::cli::joined_command_line(argc, argv);
     petroscope::cli::add_minerals_command(app, minerals_dir);
-    petroscope::cli::add_conoscope_command(app, minerals_dir, command_line);
+    petroscope::cli::add_frame_command(app, petroscope::cli::make_conoscope_options(), minerals_dir, command_line);
     petroscope::cli::add_interface_command(app, minerals_dir);
     petroscope::cli::add_verify_command(app, minerals_dir);
-    petroscope::cli::add_conical_command(app, minerals_dir, command_line);
+    petroscope::cli::add_frame_command(app, petroscope::cli::make_conical_options(), minerals_dir, command_line);
     petroscope::cli::add_section_command(app, minerals_dir);
-    petroscope::cli::add_orthoscope_command(app, minerals_dir, command_line);
+    petroscope::cli::add_frame_command(app, petroscope::cli::make_orthoscope_options(), minerals_dir, command_line);
     petroscope::cli::add_chart_command(app, minerals_dir, command_line);
+    petroscope::cli::add_sweep_command(app, minerals_dir);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

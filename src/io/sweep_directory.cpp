@@ -1,0 +1,167 @@
+#include "petroscope/io/sweep_directory.hpp"
+
+#include "animation_writer.hpp"
+#include "contact_sheet.hpp"
+
+#include "petroscope/core/error.hpp"
+#include "petroscope/io/atomic_file.hpp"
+#include "petroscope/io/data_files.hpp"
+#include "petroscope/io/json_reader.hpp"
+#include "petroscope/io/json_sidecar.hpp"
+
+#include <opencv2/imgcodecs.hpp>
+
+#include <cstdio>
+#include <fstream>
+#include <set>
+
+namespace petroscope {
+namespace {
+
+constexpr const char* plan_file = "sweep.json";
+
+nlohmann::json read_json(const std::filesystem::path& path) { return parse_json_text(read_text_file(path), path.string()); }
+
+std::string csv_number(const nlohmann::json& value) {
+    if (!value.is_number()) return "";
+    const double number = value.get<double>();
+    char text[32];
+    std::snprintf(text, sizeof text, "%.10g", number == 0.0 ? 0.0 : number);  // no "-0"
+    return text;
+}
+
+// Quotes a CSV field when it holds a comma or a quote (RFC 4180).
+std::string csv_text(const std::string& text) {
+    if (text.find_first_of(",\"\n") == std::string::npos) return text;
+    std::string quoted = "\"";
+    for (const char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return quoted + "\"";
+}
+
+}  // namespace
+
+SweepDirectory SweepDirectory::create(const std::filesystem::path& folder, const SweepPlan& plan) {
+    std::error_code error;
+    const std::filesystem::path plan_path = folder / plan_file;
+    if (std::filesystem::exists(plan_path, error)) {
+        const SweepPlan existing = SweepPlan::from_json(read_json(plan_path), plan_path.string());
+        if (existing.to_json() != plan.to_json()) {
+            throw InputError(folder.string() + " holds another sweep (its sweep.json differs: command, options or swept values); "
+                             "resume it with the same options or choose a new folder");
+        }
+    } else {
+        if (std::filesystem::exists(folder, error)) {
+            if (!std::filesystem::is_directory(folder, error)) throw InputError("-o " + folder.string() + ": it is a file, not a folder");
+            if (!std::filesystem::is_empty(folder, error)) {
+                throw InputError("-o " + folder.string() + ": the folder is not empty and holds no sweep.json; choose a new or empty folder");
+            }
+        }
+        std::filesystem::create_directories(folder, error);
+        if (error) throw InputError("cannot create the sweep folder " + folder.string() + ": " + error.message());
+        PendingOutputs pending;
+        write_json_file(plan.to_json(), pending.add(plan_path));
+        pending.commit();
+    }
+    std::filesystem::create_directories(folder / "frames", error);
+    if (error) throw InputError("cannot create " + (folder / "frames").string() + ": " + error.message());
+    return SweepDirectory(folder, plan);
+}
+
+SweepDirectory SweepDirectory::open(const std::filesystem::path& folder) {
+    const std::filesystem::path plan_path = folder / plan_file;
+    std::error_code error;
+    if (!std::filesystem::exists(plan_path, error)) {
+        throw InputError("--merge " + folder.string() + ": no sweep.json there (not a sweep folder made by 'petroscope sweep')");
+    }
+    return SweepDirectory(folder, SweepPlan::from_json(read_json(plan_path), plan_path.string()));
+}
+
+std::filesystem::path SweepDirectory::frame_path(std::size_t frame) const { return folder_ / "frames" / plan_.frame_name(frame); }
+
+bool SweepDirectory::frame_finished(std::size_t frame) const {
+    const std::filesystem::path image = frame_path(frame);
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(image, error) || !std::filesystem::is_regular_file(sidecar_path(image), error)) return false;
+    try {
+        return read_json(sidecar_path(image)).is_object();
+    } catch (const InputError&) {
+        return false;
+    }
+}
+
+SweepMerge merge_sweep(const SweepDirectory& directory) {
+    const SweepPlan& plan = directory.plan();
+    const std::size_t frames = plan.frame_count();
+    std::vector<std::size_t> missing;
+    for (std::size_t frame = 0; frame < frames; ++frame) {
+        if (!directory.frame_finished(frame)) missing.push_back(frame);
+    }
+    if (!missing.empty()) {
+        std::string list;
+        for (std::size_t k = 0; k < std::min<std::size_t>(missing.size(), 5); ++k) list += (k ? ", " : "") + plan.frame_name(missing[k]);
+        throw InputError(directory.folder().string() + ": " + std::to_string(missing.size()) + " of " + std::to_string(frames) +
+                         " frames are missing (" + list + (missing.size() > 5 ? ", …" : "") +
+                         "); render them (run the remaining shards, or the sweep again) before merging");
+    }
+
+    PendingOutputs pending;
+    SweepMerge merged{directory.folder() / "measurements.csv", directory.folder() / "sheet.png", {}};
+    const std::filesystem::path csv_temporary = pending.add(merged.csv);
+    const std::filesystem::path sheet_temporary = pending.add(merged.sheet);
+    const std::filesystem::path sheet_sidecar_temporary = pending.add(sidecar_path(merged.sheet));
+    std::filesystem::path animation_temporary;
+    if (plan.animation != "none") {
+        merged.animation = directory.folder() / ("animation." + plan.animation);
+        animation_temporary = pending.add(merged.animation);
+    }
+
+    // The measurement columns: every name any frame reports, in name order.
+    std::vector<nlohmann::json> measurements(frames);
+    std::set<std::string> names;
+    for (std::size_t frame = 0; frame < frames; ++frame) {
+        const nlohmann::json sidecar = read_json(sidecar_path(directory.frame_path(frame)));
+        if (sidecar.contains("measurements") && sidecar["measurements"].is_object()) measurements[frame] = sidecar["measurements"];
+        for (const auto& item : measurements[frame].items()) names.insert(item.key());
+    }
+    std::ofstream csv(csv_temporary, std::ios::binary);
+    csv << "frame,file";
+    for (const SweepParameter& parameter : plan.parameters) csv << ',' << csv_text(parameter.name);
+    for (const std::string& name : names) csv << ',' << csv_text(name);
+    csv << '\n';
+    for (std::size_t frame = 0; frame < frames; ++frame) {
+        csv << frame << ',' << "frames/" << plan.frame_name(frame);
+        for (const std::string& value : plan.values_of(frame)) csv << ',' << csv_text(value);
+        for (const std::string& name : names) csv << ',' << (measurements[frame].contains(name) ? csv_number(measurements[frame][name]) : "");
+        csv << '\n';
+    }
+    csv.close();
+    if (!csv) throw InputError("cannot write " + merged.csv.string());
+
+    // One pass over the frames: each goes into the sheet and the animation, so memory holds one frame.
+    std::unique_ptr<ContactSheet> sheet;
+    std::unique_ptr<AnimationWriter> animation;
+    for (std::size_t frame = 0; frame < frames; ++frame) {
+        const std::filesystem::path path = directory.frame_path(frame);
+        const cv::Mat image = cv::imread(path.string(), cv::IMREAD_COLOR);
+        if (image.empty()) throw InputError("cannot read the frame " + path.string());
+        if (!sheet) {
+            sheet = std::make_unique<ContactSheet>(plan, image.cols, image.rows);
+            if (!animation_temporary.empty()) animation = std::make_unique<AnimationWriter>(animation_temporary, plan.animation, plan.fps, image.cols, image.rows);
+        }
+        if (image.cols != sheet->frame_width() || image.rows != sheet->frame_height()) {
+            throw InputError(path.string() + ": its size differs from the first frame's; the frames of a sweep share one size");
+        }
+        sheet->add(frame, image);
+        if (animation) animation->add(image);
+    }
+    if (animation) animation->finish();
+    sheet->write_png(sheet_temporary);
+    nlohmann::json sheet_sidecar = plan.to_json();
+    sheet_sidecar["sheet_layout"] = {{"columns", sheet->columns()}, {"thumbnail_px", sheet->thumbnail_width()},
+                                     {"order", "frames row by row; with two swept options, a row per value of the first"}};
+    write_json_file(sheet_sidecar, sheet_sidecar_temporary);
+    pending.commit();
+    return merged;
+}
+
+}  // namespace petroscope
