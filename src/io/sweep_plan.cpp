@@ -26,7 +26,7 @@ NumberWithUnit parse_number_with_unit(std::string_view text, const std::string& 
     const std::string_view digits = trimmed.substr(0, split_at);
     const auto value = parse_double(digits);
     if (!value || digits.find_first_of("eE") != std::string_view::npos) {
-        throw InputError("--vary '" + whole + "': '" + std::string(trimmed) + "' is not a number (with an optional unit, e.g. 30 or 10um)");
+        throw InputError("--vary '" + whole + "': '" + std::string(trimmed) + "' is not a number (with an optional unit, e.g. 30 or 10um); expected NAME=START:END:STEP or NAME=V1,V2,…");
     }
     number.value = *value;
     const std::size_t point = digits.find('.');
