@@ -204,35 +204,33 @@ AnimationWriter::AnimationWriter(const std::filesystem::path& path, const std::s
     }
 }
 
-void AnimationWriter::add(const cv::Mat& bgr) {
-    if (format_ == "gif") {
-        add_gif_frame(bgr);
-    } else {
-        video_.write(bgr);
-    }
-}
-
-void AnimationWriter::add_gif_frame(const cv::Mat& bgr) {
+std::vector<std::uint8_t> AnimationWriter::prepare(const cv::Mat& bgr) const {
+    if (format_ != "gif") return {};
     const PalettedImage paletted = median_cut_palette(bgr);
-    // Graphic control extension: the frame's delay; then the image descriptor with a 256-entry local table.
-    const unsigned char control[] = {0x21, 0xf9, 0x04, 0x04, static_cast<unsigned char>(delay_centiseconds_ & 0xff),
-                                     static_cast<unsigned char>(delay_centiseconds_ >> 8), 0x00, 0x00};
-    gif_.write(reinterpret_cast<const char*>(control), sizeof control);
-    gif_.put(0x2c);
-    put_u16(gif_, 0);
-    put_u16(gif_, 0);
-    put_u16(gif_, width_);
-    put_u16(gif_, height_);
-    gif_.put(static_cast<char>(0x87));  // local colour table, 2^(7+1) entries
-    gif_.write(reinterpret_cast<const char*>(paletted.palette_rgb.data()), static_cast<std::streamsize>(paletted.palette_rgb.size()));
-    gif_.put(8);  // LZW minimum code size
+    // Graphic control extension (the frame's delay), image descriptor with a 256-entry local colour table,
+    // LZW minimum code size 8, the code stream in sub-blocks of at most 255 bytes, a zero-length block.
+    std::vector<std::uint8_t> bytes{0x21, 0xf9, 0x04, 0x04, static_cast<std::uint8_t>(delay_centiseconds_ & 0xff),
+                                    static_cast<std::uint8_t>(delay_centiseconds_ >> 8), 0x00, 0x00, 0x2c, 0, 0, 0, 0,
+                                    static_cast<std::uint8_t>(width_ & 0xff), static_cast<std::uint8_t>(width_ >> 8),
+                                    static_cast<std::uint8_t>(height_ & 0xff), static_cast<std::uint8_t>(height_ >> 8), 0x87};
+    bytes.insert(bytes.end(), paletted.palette_rgb.begin(), paletted.palette_rgb.end());
+    bytes.push_back(8);
     const std::vector<std::uint8_t> stream = gif_lzw_encode(paletted.indices);
     for (std::size_t offset = 0; offset < stream.size(); offset += 255) {
         const std::size_t length = std::min<std::size_t>(255, stream.size() - offset);
-        gif_.put(static_cast<char>(length));
-        gif_.write(reinterpret_cast<const char*>(stream.data() + offset), static_cast<std::streamsize>(length));
+        bytes.push_back(static_cast<std::uint8_t>(length));
+        bytes.insert(bytes.end(), stream.begin() + static_cast<std::ptrdiff_t>(offset), stream.begin() + static_cast<std::ptrdiff_t>(offset + length));
     }
-    gif_.put(0);
+    bytes.push_back(0);
+    return bytes;
+}
+
+void AnimationWriter::add(const cv::Mat& bgr, const std::vector<std::uint8_t>& prepared) {
+    if (format_ == "gif") {
+        gif_.write(reinterpret_cast<const char*>(prepared.data()), static_cast<std::streamsize>(prepared.size()));
+    } else {
+        video_.write(bgr);
+    }
 }
 
 void AnimationWriter::finish() {

@@ -16,12 +16,16 @@ class AnimationWriter {
 public:
     /// `format` is "gif" or "mp4"; frames are width × height, 8-bit BGR. Throws InputError.
     AnimationWriter(const std::filesystem::path& path, const std::string& format, double fps, int width, int height);
-    void add(const cv::Mat& bgr);
+    /// The encoded frame (GIF: palette and LZW stream; nothing for MP4). Thread-safe, so that frames can be
+    /// prepared in parallel and then added in order.
+    std::vector<std::uint8_t> prepare(const cv::Mat& bgr) const;
+    /// Appends the next frame, with what prepare() returned for it.
+    void add(const cv::Mat& bgr, const std::vector<std::uint8_t>& prepared);
+    void add(const cv::Mat& bgr) { add(bgr, prepare(bgr)); }
     /// Completes the file at `path`.
     void finish();
 
 private:
-    void add_gif_frame(const cv::Mat& bgr);
 
     std::filesystem::path path_, video_path_;
     std::string format_;

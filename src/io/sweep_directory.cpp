@@ -137,22 +137,38 @@ SweepMerge merge_sweep(const SweepDirectory& directory) {
     csv.close();
     if (!csv) throw InputError("cannot write " + merged.csv.string());
 
-    // One pass over the frames: each goes into the sheet and the animation, so memory holds one frame.
+    // The frames in batches: each batch is read and its animation frames encoded in parallel, then placed
+    // on the sheet and appended to the animation in order; memory holds one batch.
     std::unique_ptr<ContactSheet> sheet;
     std::unique_ptr<AnimationWriter> animation;
-    for (std::size_t frame = 0; frame < frames; ++frame) {
-        const std::filesystem::path path = directory.frame_path(frame);
-        const cv::Mat image = cv::imread(path.string(), cv::IMREAD_COLOR);
-        if (image.empty()) throw InputError("cannot read the frame " + path.string());
+    constexpr std::size_t batch = 16;
+    for (std::size_t start = 0; start < frames; start += batch) {
+        const std::size_t count = std::min(batch, frames - start);
+        std::vector<cv::Mat> images(count);
+        std::vector<std::vector<std::uint8_t>> encoded(count);
         if (!sheet) {
-            sheet = std::make_unique<ContactSheet>(plan, image.cols, image.rows);
-            if (!animation_temporary.empty()) animation = std::make_unique<AnimationWriter>(animation_temporary, plan.animation, plan.fps, image.cols, image.rows);
+            images[0] = cv::imread(directory.frame_path(0).string(), cv::IMREAD_COLOR);
+            if (images[0].empty()) throw InputError("cannot read the frame " + directory.frame_path(0).string());
+            sheet = std::make_unique<ContactSheet>(plan, images[0].cols, images[0].rows);
+            if (!animation_temporary.empty()) {
+                animation = std::make_unique<AnimationWriter>(animation_temporary, plan.animation, plan.fps, images[0].cols, images[0].rows);
+            }
         }
-        if (image.cols != sheet->frame_width() || image.rows != sheet->frame_height()) {
-            throw InputError(path.string() + ": its size differs from the first frame's; the frames of a sweep share one size");
+#pragma omp parallel for schedule(dynamic, 1)
+        for (std::size_t k = 0; k < count; ++k) {
+            if (images[k].empty()) images[k] = cv::imread(directory.frame_path(start + k).string(), cv::IMREAD_COLOR);
+            const bool usable = images[k].cols == sheet->frame_width() && images[k].rows == sheet->frame_height();
+            if (usable && animation) encoded[k] = animation->prepare(images[k]);
         }
-        sheet->add(frame, image);
-        if (animation) animation->add(image);
+        for (std::size_t k = 0; k < count; ++k) {
+            const std::filesystem::path path = directory.frame_path(start + k);
+            if (images[k].empty()) throw InputError("cannot read the frame " + path.string());
+            if (images[k].cols != sheet->frame_width() || images[k].rows != sheet->frame_height()) {
+                throw InputError(path.string() + ": its size differs from the first frame's; the frames of a sweep share one size");
+            }
+            sheet->add(start + k, images[k]);
+            if (animation) animation->add(images[k], encoded[k]);
+        }
     }
     if (animation) animation->finish();
     sheet->write_png(sheet_temporary);
