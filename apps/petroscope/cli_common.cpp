@@ -1,5 +1,6 @@
 #include "cli_common.hpp"
 
+#include "petroscope/core/units.hpp"
 #include "petroscope/io/json_sidecar.hpp"
 
 #include <cstdio>
@@ -27,6 +28,12 @@ void ImageResult::write(const Image& linear_rgb, const nlohmann::json& sidecar) 
     write_image(linear_rgb, image_temporary_, format_);
     write_json_file(sidecar, sidecar_temporary_);
     pending_.commit();
+}
+
+double positive_length_um(const std::string& option, const std::string& text) {
+    const double value = with_option(option, [&] { return parse_length_um(text); });
+    if (!(value > 0.0)) throw InputError(option + " '" + text + "': must be > 0");
+    return value;
 }
 
 std::string joined_command_line(int argc, char** argv) {

@@ -50,6 +50,9 @@ auto with_option(const std::string& option, Parse parse) {
     }
 }
 
+/// A length option's value in µm, which must be > 0 ("--thickness '0um': must be > 0"); throws InputError.
+double positive_length_um(const std::string& option, const std::string& text);
+
 /// The command line as one string, for sidecars.
 std::string joined_command_line(int argc, char** argv);
 

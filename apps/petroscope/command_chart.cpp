@@ -2,7 +2,6 @@
 #include "cli_common.hpp"
 
 #include "petroscope/core/error.hpp"
-#include "petroscope/core/units.hpp"
 #include "petroscope/io/chart_drawing.hpp"
 #include "petroscope/io/data_files.hpp"
 #include "petroscope/microscope/michel_levy.hpp"
@@ -57,8 +56,7 @@ void run_chart(const ChartOptions& options, const std::string& minerals_dir, con
     const WavelengthGrid grid = with_option("--wavelengths", [&] { return WavelengthGrid::parse(options.wavelength_grid); });
     settings.wavelengths_nm = grid.wavelengths_nm();
     MichelLevyChartLayout layout;
-    layout.max_thickness_um = with_option("--max-thickness", [&] { return parse_length_um(options.max_thickness); });
-    if (!(layout.max_thickness_um > 0.0)) throw InputError("--max-thickness '" + options.max_thickness + "': must be > 0");
+    layout.max_thickness_um = positive_length_um("--max-thickness", options.max_thickness);
     const MineralCatalog catalog = load_mineral_catalog(minerals_directory(minerals_dir));
     if (!options.mineral.empty()) settings.mineral = &catalog.find(options.mineral);
     settings.validate();

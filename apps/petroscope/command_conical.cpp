@@ -62,12 +62,6 @@ Eigen::Vector4d parse_polarization(const std::string& text) {
     throw InputError("--polarization '" + text + "': expected unpolarized, linear:ANGLE (degrees from +x), circular or circular:left");
 }
 
-double positive_length_um(const std::string& option, const std::string& text) {
-    const double value = with_option(option, [&] { return parse_length_um(text); });
-    if (!(value > 0.0)) throw InputError(option + " '" + text + "': must be > 0");
-    return value;
-}
-
 Image normalised_gray(const Image& image) {
     float peak = 0.0f;
     for (const float value : image.pixels) peak = std::max(peak, value);
@@ -131,12 +125,12 @@ PreparedFrame ConicalOptions::prepare(FrameContext& context) const {
         prepared.render = [=](const ProgressCallback&) {
             const ConicalProfile profile = conical_profile(parameters, half_width * std::numbers::sqrt2, 4 * size_px);
             const ConicalRings rings = conical_rings(profile, parameters.rho0);
-            RenderedFrame frame{normalised_gray(conical_screen(profile, stokes, size_px, half_width)), sidecar, {}, summary};
+            RenderedFrame frame{normalised_gray(conical_screen(profile, stokes, size_px, half_width)), sidecar, summary};
             frame.sidecar["rings"] = {{"units", "um from the ring centre (rho in units of the beam scale: divide by scale_um)"},
                                       {"outer_bright", rings.outer_bright * scale_um}, {"dark", rings.dark * scale_um},
                                       {"inner_bright", rings.inner_bright * scale_um}};
             frame.sidecar["power"] = conical_power(profile);
-            frame.measurements = ring_measurements(rings.outer_bright * scale_um, rings.dark * scale_um, rings.inner_bright * scale_um,
+            frame.sidecar["measurements"] = ring_measurements(rings.outer_bright * scale_um, rings.dark * scale_um, rings.inner_bright * scale_um,
                                                    frame.linear_rgb);
             return frame;
         };
@@ -164,7 +158,7 @@ PreparedFrame ConicalOptions::prepare(FrameContext& context) const {
     sidecar["pixel_values"] = "collected ray power per pixel, normalised so that the brightest pixel is 1";
     prepared.render = [=](const ProgressCallback& progress) {
         const ConicalRayResult traced = trace_conical_rays(settings, progress);
-        RenderedFrame frame{normalised_gray(traced.screen), sidecar, {}, summary};
+        RenderedFrame frame{normalised_gray(traced.screen), sidecar, summary};
         frame.sidecar["image_centre_um"] = {traced.ring_centre_um.x(), traced.ring_centre_um.y()};
         frame.sidecar["pinhole_point_um"] = {traced.pinhole_point_um.x(), traced.pinhole_point_um.y()};
         frame.sidecar["rings"] = {{"units", "um from the measured ring centre"},
@@ -172,10 +166,10 @@ PreparedFrame ConicalOptions::prepare(FrameContext& context) const {
                                   {"outer_bright", traced.rings.outer_bright_um}, {"dark", traced.rings.dark_um},
                                   {"inner_bright", traced.rings.inner_bright_um}};
         frame.sidecar["max_interface_power_sum"] = traced.max_interface_power_sum;
-        frame.measurements = ring_measurements(traced.rings.outer_bright_um, traced.rings.dark_um, traced.rings.inner_bright_um,
+        frame.sidecar["measurements"] = ring_measurements(traced.rings.outer_bright_um, traced.rings.dark_um, traced.rings.inner_bright_um,
                                                frame.linear_rgb);
-        frame.measurements["ring_centre_x_um"] = traced.rings.centre_um.x();
-        frame.measurements["ring_centre_y_um"] = traced.rings.centre_um.y();
+        frame.sidecar["measurements"]["ring_centre_x_um"] = traced.rings.centre_um.x();
+        frame.sidecar["measurements"]["ring_centre_y_um"] = traced.rings.centre_um.y();
         return frame;
     };
     return prepared;

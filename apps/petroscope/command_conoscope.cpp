@@ -5,7 +5,6 @@
 
 #include "petroscope/core/error.hpp"
 #include "petroscope/core/text.hpp"
-#include "petroscope/core/units.hpp"
 #include "petroscope/io/data_files.hpp"
 #include "petroscope/microscope/conoscope.hpp"
 #include "petroscope/microscope/frame_measurements.hpp"
@@ -93,8 +92,7 @@ nlohmann::json measure_figure(const Image& linear_rgb, const ConoscopeSettings& 
 
 PreparedFrame ConoscopeOptions::prepare(FrameContext& context) const {
     ConoscopeSettings settings;
-    settings.thickness_um = with_option("--thickness", [&] { return parse_length_um(thickness_); });
-    if (!(settings.thickness_um > 0.0)) throw InputError("--thickness '" + thickness_ + "': the thickness must be > 0");
+    settings.thickness_um = positive_length_um("--thickness", thickness_);
     settings.numerical_aperture = na_;
     settings.size_px = size_px_;
     settings.stage_deg = stage_deg_;
@@ -180,7 +178,7 @@ PreparedFrame ConoscopeOptions::prepare(FrameContext& context) const {
             light_options, light_used,
             [&](const SpectralIntegrator* integrator) { return render_conoscope(settings, principal_n, integrator, progress); },
             "parallel polars without the crystal", frame.sidecar["light"]);
-        frame.measurements = measure_figure(frame.linear_rgb, settings, mineral.principal_n(axes_wavelength_nm));
+        frame.sidecar["measurements"] = measure_figure(frame.linear_rgb, settings, mineral.principal_n(axes_wavelength_nm));
         const std::size_t count = settings.wavelengths_nm.size();
         frame.summary = std::to_string(settings.size_px) + "x" + std::to_string(settings.size_px) + ", " + std::to_string(count) +
                         " wavelength" + (count == 1 ? "" : "s");

@@ -5,7 +5,6 @@
 
 #include "petroscope/core/error.hpp"
 #include "petroscope/core/text.hpp"
-#include "petroscope/core/units.hpp"
 #include "petroscope/io/data_files.hpp"
 #include "petroscope/io/thin_section_file.hpp"
 #include "petroscope/microscope/frame_measurements.hpp"
@@ -79,10 +78,8 @@ PreparedFrame OrthoscopeOptions::prepare(FrameContext& context) const {
     settings.validate();
     ThinSection section = context.section(section_);
     if (!thickness_.empty()) {
-        const double thickness_um = with_option("--thickness", [&] { return parse_length_um(thickness_); });
-        if (!(thickness_um > 0.0)) throw InputError("--thickness '" + thickness_ + "': the thickness must be > 0");
         section.thickness_kind = ThicknessKind::uniform;
-        section.thickness_um = thickness_um;
+        section.thickness_um = positive_length_um("--thickness", thickness_);
     }
 
     PreparedFrame prepared;
@@ -126,7 +123,7 @@ PreparedFrame OrthoscopeOptions::prepare(FrameContext& context) const {
             "the light after the polarizer", frame.sidecar["light"]);
         // Whole-field means: between crossed polars a grain at extinction darkens the field.
         const MeanColour mean = mean_colour(frame.linear_rgb, false);
-        frame.measurements = {{"mean_r", mean.r}, {"mean_g", mean.g}, {"mean_b", mean.b}, {"mean_luminance", mean.luminance}};
+        frame.sidecar["measurements"] = {{"mean_r", mean.r}, {"mean_g", mean.g}, {"mean_b", mean.b}, {"mean_luminance", mean.luminance}};
         const std::size_t count = settings.microscope.wavelengths_nm.size();
         frame.summary = std::to_string(section.width_px) + "x" + std::to_string(section.height_px) + ", " + std::to_string(section.grains.size()) +
                         " grains, " + std::to_string(count) + " wavelength" + (count == 1 ? "" : "s");

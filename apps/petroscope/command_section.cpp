@@ -101,8 +101,8 @@ void run_random(const RandomOptions& options, const std::string& minerals_dir) {
     if (!options.sizes.empty()) settings.grain_sizes = parse_number_list("--sizes", options.sizes);
     settings.grain_count = options.grains;
     settings.size_px = options.size_px;
-    settings.pixel_size_um = with_option("--pixel-size", [&] { return parse_length_um(options.pixel_size); });
-    settings.thickness_um = with_option("--thickness", [&] { return parse_length_um(options.thickness); });
+    settings.pixel_size_um = positive_length_um("--pixel-size", options.pixel_size);
+    settings.thickness_um = positive_length_um("--thickness", options.thickness);
     settings.seed = options.seed;
     settings.name = options.name.empty() ? std::filesystem::path(options.output).lexically_normal().filename().string() : options.name;
     if (settings.name.empty() || settings.name == "." || settings.name == "..") settings.name = "random";
@@ -114,8 +114,6 @@ void run_random(const RandomOptions& options, const std::string& minerals_dir) {
         throw InputError("--grains " + std::to_string(settings.grain_count) + ": expected 1 to " + std::to_string(most_grains) +
                          " (at most one grain per pixel, --size squared, and 65535 labels in a 16-bit map)");
     }
-    if (!(settings.pixel_size_um > 0.0)) throw InputError("--pixel-size '" + options.pixel_size + "': the pixel size must be > 0");
-    if (!(settings.thickness_um > 0.0)) throw InputError("--thickness '" + options.thickness + "': the thickness must be > 0");
     for (const auto& [option, values] : {std::pair{std::string("--weights"), &settings.weights}, {std::string("--sizes"), &settings.grain_sizes}}) {
         if (!values->empty() && values->size() != settings.minerals.size()) {
             throw InputError(option + ": " + std::to_string(values->size()) + " values for " + std::to_string(settings.minerals.size()) +

@@ -212,6 +212,8 @@ void run_sweep(const SweepOptions& sweep, const RenderOptionSet& options, const 
         omp_set_num_threads(1);
         try {
             const std::size_t frame = todo[k];
+            // Prepared again rather than kept from the check above: a prepared orthoscope frame holds its own
+            // copy of the section, too much to keep for thousands of frames. (The context is not thread-safe.)
             PreparedFrame prepared;
 #pragma omp critical(petroscope_sweep_context)
             prepared = prepare_frame(make, plan, frame, context);
@@ -221,7 +223,6 @@ void run_sweep(const SweepOptions& sweep, const RenderOptionSet& options, const 
             std::string command_line = "petroscope " + plan.command;
             for (const std::string& argument : plan.frame_arguments(frame)) command_line += " " + shell_quoted(argument);
             rendered.sidecar["command_line"] = command_line + " -o " + shell_quoted(path.filename().string());
-            rendered.sidecar["measurements"] = rendered.measurements;
             const std::vector<std::string> values = plan.values_of(frame);
             nlohmann::json swept = nlohmann::json::object();
             for (std::size_t p = 0; p < plan.parameters.size(); ++p) swept[plan.parameters[p].name] = values[p];

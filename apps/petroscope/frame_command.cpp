@@ -45,7 +45,6 @@ void add_frame_command(CLI::App& app, std::unique_ptr<FrameOptions> options_in, 
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
         frame.sidecar["command_line"] = command_line;
         frame.sidecar["seconds"] = seconds;
-        frame.sidecar["measurements"] = frame.measurements;
         result.write(frame.linear_rgb, frame.sidecar);
         std::cerr << "petroscope: wrote " << *output << " and " << *output << ".json (" << frame.summary << ", " << seconds << " s)\n";
     });

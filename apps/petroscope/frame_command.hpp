@@ -19,12 +19,12 @@
 namespace petroscope::cli {
 
 /// One rendered image: linear sRGB, the sidecar of every parameter used (without the command line and the
-/// run time, which the caller adds), measurements made on it, and a few words for the terminal.
+/// run time, which the caller adds) whose "measurements" maps a name to a number measured on the image (or
+/// null: not measurable), and a few words for the terminal.
 struct RenderedFrame {
     Image linear_rgb;
     nlohmann::json sidecar;
-    nlohmann::json measurements = nlohmann::json::object();  // name → number (or null: not measurable)
-    std::string summary;                                     // "512x512, 81 wavelengths"
+    std::string summary;  // "512x512, 81 wavelengths"
 };
 
 /// Validated options, ready to render: nothing has been written yet.

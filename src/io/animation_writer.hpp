@@ -21,7 +21,6 @@ public:
     std::vector<std::uint8_t> prepare(const cv::Mat& bgr) const;
     /// Appends the next frame, with what prepare() returned for it.
     void add(const cv::Mat& bgr, const std::vector<std::uint8_t>& prepared);
-    void add(const cv::Mat& bgr) { add(bgr, prepare(bgr)); }
     /// Completes the file at `path`.
     void finish();
 

@@ -78,23 +78,34 @@ SweepDirectory SweepDirectory::open(const std::filesystem::path& folder) {
 
 std::filesystem::path SweepDirectory::frame_path(std::size_t frame) const { return folder_ / "frames" / plan_.frame_name(frame); }
 
-bool SweepDirectory::frame_finished(std::size_t frame) const {
+std::optional<nlohmann::json> SweepDirectory::finished_frame_sidecar(std::size_t frame) const {
     const std::filesystem::path image = frame_path(frame);
     std::error_code error;
-    if (!std::filesystem::is_regular_file(image, error) || !std::filesystem::is_regular_file(sidecar_path(image), error)) return false;
+    if (!std::filesystem::is_regular_file(image, error) || !std::filesystem::is_regular_file(sidecar_path(image), error)) return std::nullopt;
     try {
-        return read_json(sidecar_path(image)).is_object();
+        nlohmann::json sidecar = read_json(sidecar_path(image));
+        if (sidecar.is_object()) return sidecar;
     } catch (const InputError&) {
-        return false;
     }
+    return std::nullopt;
 }
 
 SweepMerge merge_sweep(const SweepDirectory& directory) {
     const SweepPlan& plan = directory.plan();
     const std::size_t frames = plan.frame_count();
+    // Each frame's measurements, from its sidecar, read once; the columns are every name any frame reports,
+    // in name order.
+    std::vector<nlohmann::json> measurements(frames, nlohmann::json::object());
+    std::set<std::string> names;
     std::vector<std::size_t> missing;
     for (std::size_t frame = 0; frame < frames; ++frame) {
-        if (!directory.frame_finished(frame)) missing.push_back(frame);
+        const std::optional<nlohmann::json> sidecar = directory.finished_frame_sidecar(frame);
+        if (!sidecar) {
+            missing.push_back(frame);
+            continue;
+        }
+        if (sidecar->contains("measurements") && (*sidecar)["measurements"].is_object()) measurements[frame] = (*sidecar)["measurements"];
+        for (const auto& item : measurements[frame].items()) names.insert(item.key());
     }
     if (!missing.empty()) {
         std::string list;
@@ -115,14 +126,6 @@ SweepMerge merge_sweep(const SweepDirectory& directory) {
         animation_temporary = pending.add(merged.animation);
     }
 
-    // The measurement columns: every name any frame reports, in name order.
-    std::vector<nlohmann::json> measurements(frames);
-    std::set<std::string> names;
-    for (std::size_t frame = 0; frame < frames; ++frame) {
-        const nlohmann::json sidecar = read_json(sidecar_path(directory.frame_path(frame)));
-        if (sidecar.contains("measurements") && sidecar["measurements"].is_object()) measurements[frame] = sidecar["measurements"];
-        for (const auto& item : measurements[frame].items()) names.insert(item.key());
-    }
     std::ofstream csv(csv_temporary, std::ios::binary);
     csv << "frame,file";
     for (const SweepParameter& parameter : plan.parameters) csv << ',' << csv_text(parameter.name);

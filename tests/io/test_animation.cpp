@@ -35,7 +35,7 @@ TEST(GifAnimation, DecodesToTheEncodedPaletteImagesFrameByFrame) {
     const std::vector<cv::Mat> frames{test_frame(width, height, 1), test_frame(width, height, 2), test_frame(width, height, 3)};
     const std::filesystem::path path = scratch_file("animation-test.gif");
     AnimationWriter writer(path, "gif", 10.0, width, height);
-    for (const cv::Mat& frame : frames) writer.add(frame);
+    for (const cv::Mat& frame : frames) writer.add(frame, writer.prepare(frame));
     writer.finish();
 
     auto input = OIIO::ImageInput::open(path.string());

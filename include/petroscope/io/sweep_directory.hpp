@@ -5,6 +5,7 @@
 #include "petroscope/io/sweep_plan.hpp"
 
 #include <filesystem>
+#include <optional>
 
 namespace petroscope {
 
@@ -20,9 +21,11 @@ public:
     const SweepPlan& plan() const { return plan_; }
     const std::filesystem::path& folder() const { return folder_; }
     std::filesystem::path frame_path(std::size_t frame) const;
-    /// The frame's image and its sidecar are both in place and the sidecar reads as JSON. (A frame's files
-    /// are renamed into place image first, sidecar last, so this never accepts a half-written frame.)
-    bool frame_finished(std::size_t frame) const;
+    /// The frame's sidecar when the frame is finished: its image and its sidecar are both in place and the
+    /// sidecar reads as a JSON object. (A frame's files are renamed into place image first, sidecar last, so
+    /// this never accepts a half-written frame.)
+    std::optional<nlohmann::json> finished_frame_sidecar(std::size_t frame) const;
+    bool frame_finished(std::size_t frame) const { return finished_frame_sidecar(frame).has_value(); }
 
 private:
     SweepDirectory(std::filesystem::path folder, SweepPlan plan) : folder_(std::move(folder)), plan_(std::move(plan)) {}
