@@ -52,6 +52,32 @@ std::vector<double> conoscope_point_transmission(const ConoscopeSettings& settin
     return transmission;
 }
 
+ConoscopeTerms::ConoscopeTerms(const ConoscopeSettings& settings, const PrincipalIndexFunction& principal_n)
+    : settings_(settings) {
+    settings_.validate();
+    if (settings_.plate || settings_.mounting) throw InputError("interference terms are defined for a slab without a plate or mounting only");
+    wavelength_count_ = settings_.wavelengths_nm.size();
+    evaluator_ = std::make_unique<detail::ConoscopeEvaluator>(settings_, principal_n);
+}
+
+ConoscopeTerms::~ConoscopeTerms() = default;
+
+void ConoscopeTerms::evaluate(const std::vector<Eigen::Vector2d>& xis, std::vector<InterferenceTerms>& out) const {
+    const std::size_t count = wavelength_count_;
+    out.resize(xis.size() * count);
+    const int points = static_cast<int>(xis.size());
+#pragma omp parallel
+    {
+        detail::KernelScratch scratch;
+        bool continues = false;
+#pragma omp for schedule(static)
+        for (int k = 0; k < points; ++k) {
+            evaluator_->spectral_terms(xis[static_cast<std::size_t>(k)], scratch, continues, out.data() + static_cast<std::size_t>(k) * count);
+            continues = true;
+        }
+    }
+}
+
 Image render_conoscope(const ConoscopeSettings& settings, const PrincipalIndexFunction& principal_n,
                        const SpectralIntegrator* integrator, const ProgressCallback& progress) {
     settings.validate();

@@ -32,10 +32,10 @@ std::vector<BinormalFrame> frames_for(const ConoscopeSettings& settings, const P
     return frames;
 }
 
-std::vector<double> k0_thickness_for(const ConoscopeSettings& settings) {
+std::vector<double> k0_thickness_for(const ConoscopeSettings& settings, double thickness_um) {
     std::vector<double> values;
     for (const double wavelength_nm : settings.wavelengths_nm) {
-        values.push_back(2.0 * std::numbers::pi * settings.thickness_um * 1e3 / wavelength_nm);
+        values.push_back(2.0 * std::numbers::pi * thickness_um * 1e3 / wavelength_nm);
     }
     return values;
 }
@@ -59,7 +59,8 @@ ConoscopeEvaluator::ConoscopeEvaluator(const ConoscopeSettings& settings, const 
     : settings_(settings),
       polars_{unit_at(settings.polarizer_deg), unit_at(settings.analyzer_deg), settings.analyzer_in},
       frames_(frames_for(settings, principal_n)),
-      k0_thickness_(k0_thickness_for(settings)),
+      k0_thickness_(k0_thickness_for(settings, settings.thickness_um)),
+      k0_per_um_(k0_thickness_for(settings, 1.0)),
       spectral_samples_(samples_of(frames_, k0_thickness_, settings.surround_n, 1)) {
     if (frames_.size() == 1) monochromatic_samples_ = samples_of(frames_, k0_thickness_, settings.surround_n, kMonochromaticBatch);
     if (settings.plate) {
@@ -99,6 +100,26 @@ void ConoscopeEvaluator::spectral_pair(const Eigen::Vector2d& xi, KernelScratch&
     }
 }
 
+void ConoscopeEvaluator::spectral_terms(const Eigen::Vector2d& xi, KernelScratch& scratch, bool continues_row,
+                                        InterferenceTerms* out) const {
+    if (!plate_jones_lab_.empty()) throw InputError("interference terms are defined without an accessory plate only");
+    if (scratch.failed.size() != spectral_samples_.padded_size()) {
+        scratch.resize(spectral_samples_.padded_size());
+        scratch.warm_ready = false;
+    }
+    set_sample_directions(scratch, 0, spectral_samples_.padded_size(), xi);
+    const bool warm = continues_row && scratch.warm_ready;
+    bool any_failed = run_kernel(spectral_samples_, polars_, scratch, warm, true);
+    if (any_failed && warm) any_failed = run_kernel(spectral_samples_, polars_, scratch, false, true);
+    for (std::size_t w = 0; w < spectral_samples_.size(); ++w) {
+        if (any_failed && scratch.failed[w] != 0) {
+            out[w] = reference_terms(w, xi);
+        } else {
+            out[w] = {scratch.mean[0][w], scratch.modulation[0][w], k0_per_um_[w] * (scratch.q[0][0][w] - scratch.q[0][1][w])};
+        }
+    }
+}
+
 void ConoscopeEvaluator::monochromatic_pairs(const std::vector<Eigen::Vector2d>& xis, KernelScratch& scratch,
                                              double* out_plus, double* out_minus) const {
     if (xis.empty()) return;
@@ -128,43 +149,76 @@ void ConoscopeEvaluator::monochromatic_pairs(const std::vector<Eigen::Vector2d>&
     }
 }
 
-std::array<double, 2> ConoscopeEvaluator::reference_pair(std::size_t w, const Eigen::Vector2d& xi) const {
+std::optional<std::array<SlabTransfer, 2>> ConoscopeEvaluator::reference_transfers(std::size_t w, const Eigen::Vector2d& xi) const {
     const std::array<TangentialWavevector, 2> directions{TangentialWavevector::from_xi(xi), TangentialWavevector::from_xi(-xi)};
     const Eigen::Vector2d no_guess = Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
     std::array<std::array<SlabMode, 2>, 2> forward;
-    std::array<double, 2> result{0.0, 0.0};
     for (int side = 0; side < 2; ++side) {
-        // No propagating mode on some sheet: no power crosses the slab.
-        if (!solve_forward_modes(frames_[w], directions[side].xi, no_guess, forward[side])) return result;
+        if (!solve_forward_modes(frames_[w], directions[side].xi, no_guess, forward[side])) return std::nullopt;
     }
+    std::array<SlabTransfer, 2> transfers;
     for (int side = 0; side < 2; ++side) {
         SlabModes modes;
         modes.forward = forward[side];
         for (int sheet = 0; sheet < 2; ++sheet) modes.backward[sheet] = time_reversed(forward[1 - side][sheet]);
-        const SlabTransfer transfer = slab_transfer(modes, directions[side], settings_.surround_n, settings_.surround_n);
-        result[side] = plate_jones_lab_.empty() ? analyzed_intensity(transfer, directions[side], k0_thickness_[w])
-                                                : analyzed_intensity_with_plate(transfer, directions[side], k0_thickness_[w], w);
+        transfers[side] = slab_transfer(modes, directions[side], settings_.surround_n, settings_.surround_n);
+    }
+    return transfers;
+}
+
+std::array<double, 2> ConoscopeEvaluator::reference_pair(std::size_t w, const Eigen::Vector2d& xi) const {
+    const auto transfers = reference_transfers(w, xi);
+    std::array<double, 2> result{0.0, 0.0};
+    if (!transfers) return result;
+    for (int side = 0; side < 2; ++side) {
+        const TangentialWavevector direction = TangentialWavevector::from_xi(side == 0 ? xi : Eigen::Vector2d(-xi));
+        result[side] = plate_jones_lab_.empty() ? analyzed_intensity((*transfers)[side], direction, k0_thickness_[w])
+                                                : analyzed_intensity_with_plate((*transfers)[side], direction, k0_thickness_[w], w);
     }
     return result;
 }
 
-double ConoscopeEvaluator::analyzed_intensity(const SlabTransfer& transfer, const TangentialWavevector& direction,
-                                              double k0_thickness) const {
+InterferenceTerms ConoscopeEvaluator::reference_terms(std::size_t w, const Eigen::Vector2d& xi) const {
+    const auto transfers = reference_transfers(w, xi);
+    if (!transfers) return {};
+    const SlabTransfer& transfer = (*transfers)[0];
+    int count = 0;
+    const std::array<Eigen::Vector2d, 2> pairs = analyzed_amplitude_pairs(transfer, TangentialWavevector::from_xi(xi), count);
+    InterferenceTerms terms{0.0, 0.0, k0_per_um_[w] * (transfer.q[0] - transfer.q[1])};
+    for (int k = 0; k < count; ++k) {
+        const PairTerms pair = pair_terms(pairs[k][0], pairs[k][1]);
+        terms.mean += pair.mean;
+        terms.modulation += pair.modulation;
+    }
+    return terms;
+}
+
+std::array<Eigen::Vector2d, 2> ConoscopeEvaluator::analyzed_amplitude_pairs(const SlabTransfer& transfer,
+                                                                             const TangentialWavevector& direction, int& count) const {
     // An aplanatic condenser and objective keep the s and p amplitudes of each ray (Born & Wolf §8.8,
     // Richards & Wolf 1959): the polarizer's field P splits as (P·ŝ, P·ρ̂) in the (s, p) basis.
     const Eigen::Vector2d incident(polars_.polarizer.dot(direction.azimuthal), polars_.polarizer.dot(direction.radial));
     // Mode amplitudes are real for a lossless crystal between lossless media below the critical angle, so
     // each output amplitude is Σₘ cₘ·exp(iφₘ) with real cₘ (interference.hpp).
     const Eigen::Vector2d mode_amplitudes = transfer.entry * incident;
+    if (polars_.analyzer_in) {
+        count = 1;
+        const Eigen::Vector2d analyzer(polars_.analyzer.dot(direction.azimuthal), polars_.analyzer.dot(direction.radial));
+        return {(analyzer.transpose() * transfer.exit).transpose().cwiseProduct(mode_amplitudes), Eigen::Vector2d::Zero()};
+    }
+    count = 2;
+    return {transfer.exit.row(0).transpose().cwiseProduct(mode_amplitudes), transfer.exit.row(1).transpose().cwiseProduct(mode_amplitudes)};
+}
+
+double ConoscopeEvaluator::analyzed_intensity(const SlabTransfer& transfer, const TangentialWavevector& direction,
+                                              double k0_thickness) const {
     const double half_phase_sine = std::sin(0.5 * k0_thickness * (transfer.q[0] - transfer.q[1]));
     const double sin2 = half_phase_sine * half_phase_sine;
-    const auto intensity = [&](const Eigen::Vector2d& c) { return pair_intensity(c[0], c[1], sin2); };
-    if (polars_.analyzer_in) {
-        const Eigen::Vector2d analyzer(polars_.analyzer.dot(direction.azimuthal), polars_.analyzer.dot(direction.radial));
-        return intensity((analyzer.transpose() * transfer.exit).transpose().cwiseProduct(mode_amplitudes));
-    }
-    return intensity(transfer.exit.row(0).transpose().cwiseProduct(mode_amplitudes)) +
-           intensity(transfer.exit.row(1).transpose().cwiseProduct(mode_amplitudes));
+    int count = 0;
+    const std::array<Eigen::Vector2d, 2> pairs = analyzed_amplitude_pairs(transfer, direction, count);
+    double intensity = 0.0;
+    for (int k = 0; k < count; ++k) intensity += pair_intensity(pairs[k][0], pairs[k][1], sin2);
+    return intensity;
 }
 
 double ConoscopeEvaluator::analyzed_intensity_with_plate(const SlabTransfer& transfer, const TangentialWavevector& direction,

@@ -29,10 +29,22 @@ public:
     void monochromatic_pairs(const std::vector<Eigen::Vector2d>& xis, KernelScratch& scratch, double* out_plus,
                              double* out_minus) const;
 
+    /// The thickness dependence of ξ at every wavelength (no plate): transmission = mean +
+    /// modulation·cos(phase_per_um·d) for a slab d µm thick. `continues_row` as for spectral_pair.
+    void spectral_terms(const Eigen::Vector2d& xi, KernelScratch& scratch, bool continues_row, InterferenceTerms* out) const;
+
     /// The reference path alone, at wavelength index `w`: the transmission for (ξ, −ξ).
     std::array<double, 2> reference_pair(std::size_t w, const Eigen::Vector2d& xi) const;
 
 private:
+    /// The slab's transfer for ξ (index 0) and −ξ (1) at wavelength index `w`; none where a sheet has no
+    /// propagating mode (no power crosses the slab).
+    std::optional<std::array<SlabTransfer, 2>> reference_transfers(std::size_t w, const Eigen::Vector2d& xi) const;
+    InterferenceTerms reference_terms(std::size_t w, const Eigen::Vector2d& xi) const;
+    /// The analyzed field as pairs of real mode amplitudes (c₀, c₁), one pair per analyzed component (one
+    /// behind the analyzer, two without it); `count` says how many.
+    std::array<Eigen::Vector2d, 2> analyzed_amplitude_pairs(const SlabTransfer& transfer, const TangentialWavevector& direction,
+                                                            int& count) const;
     double analyzed_intensity(const SlabTransfer& transfer, const TangentialWavevector& direction, double k0_thickness) const;
     /// With an accessory plate: the field leaves the slab as a_s·ŝ + a_p·ρ̂, crosses the plate (lab Jones
     /// matrix of wavelength `w`), then the analyzer.
@@ -43,6 +55,7 @@ private:
     PolarizerPair polars_;
     std::vector<BinormalFrame> frames_;
     std::vector<double> k0_thickness_;
+    std::vector<double> k0_per_um_;
     SampleCrystal spectral_samples_;                     // one sample per wavelength
     std::optional<SampleCrystal> monochromatic_samples_;  // the single wavelength, kMonochromaticBatch times
     std::vector<Eigen::Matrix2cd> plate_jones_lab_;       // per wavelength; empty without a plate

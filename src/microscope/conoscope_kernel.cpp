@@ -185,7 +185,7 @@ void solve_modes(const SampleCrystal& crystal, KernelScratch& scratch) {
 
 // Single-pass transmission for one side from its forward modes and the other side's (time-reversed:
 // the backward modes), after optics/slab.cpp's slab_transfer and the conoscope's analyzed intensity.
-template <bool AnalyzerIn, int Side>
+template <bool AnalyzerIn, bool Terms, int Side>
 void side_transmission(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch) {
     constexpr int other = 1 - Side;
     const double *rho_x0 = scratch.rho_x.data(), *rho_y0 = scratch.rho_y.data(), *reversal = scratch.reversal.data();
@@ -200,6 +200,7 @@ void side_transmission(const SampleCrystal& crystal, const PolarizerPair& polars
     const double* surround = crystal.surround_n.data();
     const double* k0_thickness = crystal.k0_thickness.data();
     double* out = scratch.transmission[Side].data();
+    double *mean = scratch.mean[Side].data(), *modulation = scratch.modulation[Side].data();
     const double pol_x = polars.polarizer.x(), pol_y = polars.polarizer.y();
     const double ana_x = polars.analyzer.x(), ana_y = polars.analyzer.y();
     const int count = static_cast<int>(crystal.padded_size());
@@ -242,9 +243,19 @@ void side_transmission(const SampleCrystal& crystal, const PolarizerPair& polars
         const double e10 = f10 - (bp10 * r00 + bp11 * r10), e11 = f11 - (bp10 * r01 + bp11 * r11);
         const double sin2 = sin_squared(0.5 * k0_thickness[i] * (qf[i] - qs[i]));
         if constexpr (AnalyzerIn) {
-            out[i] = pair_intensity((a_s * e00 + a_p * e10) * t0, (a_s * e01 + a_p * e11) * t1, sin2);
+            const double u0 = (a_s * e00 + a_p * e10) * t0, u1 = (a_s * e01 + a_p * e11) * t1;
+            out[i] = pair_intensity(u0, u1, sin2);
+            if constexpr (Terms) {
+                mean[i] = u0 * u0 + u1 * u1;
+                modulation[i] = 2.0 * u0 * u1;
+            }
         } else {
-            out[i] = pair_intensity(e00 * t0, e01 * t1, sin2) + pair_intensity(e10 * t0, e11 * t1, sin2);
+            const double u0 = e00 * t0, u1 = e01 * t1, v0 = e10 * t0, v1 = e11 * t1;
+            out[i] = pair_intensity(u0, u1, sin2) + pair_intensity(v0, v1, sin2);
+            if constexpr (Terms) {
+                mean[i] = u0 * u0 + u1 * u1 + v0 * v0 + v1 * v1;
+                modulation[i] = 2.0 * (u0 * u1 + v0 * v1);
+            }
         }
     }
 }
@@ -257,6 +268,17 @@ void solve_side(const SampleCrystal& crystal, KernelScratch& scratch, bool warm)
     }
     solve_modes<Uniaxial, 0, Side>(crystal, scratch);
     solve_modes<Uniaxial, 1, Side>(crystal, scratch);
+}
+
+template <bool Terms>
+void transmission_of_both_sides(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch) {
+    if (polars.analyzer_in) {
+        side_transmission<true, Terms, 0>(crystal, polars, scratch);
+        side_transmission<true, Terms, 1>(crystal, polars, scratch);
+    } else {
+        side_transmission<false, Terms, 0>(crystal, polars, scratch);
+        side_transmission<false, Terms, 1>(crystal, polars, scratch);
+    }
 }
 
 }  // namespace
@@ -296,7 +318,7 @@ void KernelScratch::resize(std::size_t padded_samples) {
     }
     for (auto& side : psi) for (auto& sheet : side) for (auto& component : sheet) component.resize(padded_samples);
     for (auto& side : sheet_failed) for (auto& sheet : side) sheet.resize(padded_samples);
-    for (auto* set : {&previous_xi_x, &previous_xi_y, &transmission}) for (auto& side : *set) side.resize(padded_samples);
+    for (auto* set : {&previous_xi_x, &previous_xi_y, &transmission, &mean, &modulation}) for (auto& side : *set) side.resize(padded_samples);
     failed.resize(padded_samples);
 }
 
@@ -309,7 +331,7 @@ void set_sample_directions(KernelScratch& scratch, std::size_t first, std::size_
     for (int k = 0; k < 5; ++k) std::fill_n(arrays[k]->begin() + static_cast<std::ptrdiff_t>(first), count, values[k]);
 }
 
-bool run_kernel(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch, bool warm) {
+bool run_kernel(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch, bool warm, bool terms) {
     if (crystal.uniaxial) {
         solve_side<true, 0>(crystal, scratch, warm);
         solve_side<true, 1>(crystal, scratch, warm);
@@ -317,12 +339,10 @@ bool run_kernel(const SampleCrystal& crystal, const PolarizerPair& polars, Kerne
         solve_side<false, 0>(crystal, scratch, warm);
         solve_side<false, 1>(crystal, scratch, warm);
     }
-    if (polars.analyzer_in) {
-        side_transmission<true, 0>(crystal, polars, scratch);
-        side_transmission<true, 1>(crystal, polars, scratch);
+    if (terms) {
+        transmission_of_both_sides<true>(crystal, polars, scratch);
     } else {
-        side_transmission<false, 0>(crystal, polars, scratch);
-        side_transmission<false, 1>(crystal, polars, scratch);
+        transmission_of_both_sides<false>(crystal, polars, scratch);
     }
     // A sample needs all four modes (each side's backward modes are the other side's forward ones).
     const int count = static_cast<int>(crystal.size());

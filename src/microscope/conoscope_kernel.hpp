@@ -58,6 +58,8 @@ struct KernelScratch {
     // Flags are 8-byte integers: a narrower type would make the vectoriser process 64 samples at a time.
     std::array<std::array<std::vector<std::int64_t>, 2>, 2> sheet_failed;
     std::array<std::vector<double>, 2> transmission;
+    // With `terms`: transmission = mean + modulation·cos(k₀d(q_fast − q_slow)) (microscope/interference.hpp).
+    std::array<std::vector<double>, 2> mean, modulation;
     std::vector<std::int64_t> failed;  // per sample: recompute with the reference path
     bool warm_ready = false;           // the last run's roots can start the next run's iterations
 };
@@ -67,8 +69,10 @@ void set_sample_directions(KernelScratch& scratch, std::size_t first, std::size_
 
 /// Transmission of every sample into scratch.transmission[side]. With `warm` (allowed when
 /// scratch.warm_ready), each sample's Newton iterations start from the previous run's roots moved along
-/// ∂q/∂ξ: the samples must be the same wavelengths as then, at a nearby ξ. Returns whether any sample was
+/// ∂q/∂ξ: the samples must be the same wavelengths as then, at a nearby ξ. With `terms`, also the
+/// thickness-independent terms into scratch.mean and scratch.modulation. Returns whether any sample was
 /// flagged in scratch.failed.
-bool run_kernel(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch, bool warm);
+bool run_kernel(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch, bool warm,
+                bool terms = false);
 
 }  // namespace petroscope::detail

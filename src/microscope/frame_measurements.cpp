@@ -31,9 +31,9 @@ MeanColour mean_colour(const Image& linear_rgb, bool circular_field) {
         }
     }
     if (count == 0) return mean;
-    mean.r /= count;
-    mean.g /= count;
-    mean.b /= count;
+    mean.r /= static_cast<double>(count);
+    mean.g /= static_cast<double>(count);
+    mean.b /= static_cast<double>(count);
     mean.luminance = 0.2126 * mean.r + 0.7152 * mean.g + 0.0722 * mean.b;
     return mean;
 }

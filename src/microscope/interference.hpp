@@ -12,4 +12,12 @@ inline double pair_intensity(double c0, double c1, double sin2) {
                           : (c0 + c1) * (c0 + c1) - 4.0 * product * sin2;
 }
 
+/// The same intensity as a function of the phase difference δ: mean + modulation·cos δ with
+/// mean = c₀² + c₁² and modulation = 2c₀c₁ (the thickness dependence that fitting uses).
+struct PairTerms {
+    double mean = 0.0;
+    double modulation = 0.0;
+};
+inline PairTerms pair_terms(double c0, double c1) { return {c0 * c0 + c1 * c1, 2.0 * c0 * c1}; }
+
 }  // namespace petroscope::detail

@@ -8,7 +8,10 @@
 
 #include <Eigen/Core>
 
+#include <cmath>
+
 #include <functional>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -48,6 +51,37 @@ Eigen::Vector2d conoscope_tangential_wavevector(const ConoscopeSettings& setting
 std::vector<double> conoscope_point_transmission(const ConoscopeSettings& settings,
                                                  const PrincipalIndexFunction& principal_n,
                                                  const Eigen::Vector2d& xi);
+
+/// How one image point's transmission at one wavelength depends on the slab thickness d (single pass,
+/// no plate): mean + modulation·cos(phase_per_um·d), the interference of the two modes
+/// (phase_per_um = k₀(q_fast − q_slow) in rad/µm). Fitting a thickness needs these only once.
+struct InterferenceTerms {
+    double mean = 0.0;
+    double modulation = 0.0;
+    double phase_per_um = 0.0;
+
+    double transmission(double thickness_um) const { return mean + modulation * std::cos(phase_per_um * thickness_um); }
+};
+
+namespace detail {
+class ConoscopeEvaluator;
+}
+
+/// The terms of many image points at every wavelength of a figure's settings (settings.thickness_um is
+/// not used; a plate or a mounting is refused with InputError).
+class ConoscopeTerms {
+public:
+    ConoscopeTerms(const ConoscopeSettings& settings, const PrincipalIndexFunction& principal_n);
+    ~ConoscopeTerms();
+    std::size_t wavelength_count() const { return wavelength_count_; }
+    /// out[k·W + w] for xis[k] and wavelength w, on all threads (neighbouring ξ in order are faster).
+    void evaluate(const std::vector<Eigen::Vector2d>& xis, std::vector<InterferenceTerms>& out) const;
+
+private:
+    ConoscopeSettings settings_;
+    std::size_t wavelength_count_ = 0;
+    std::unique_ptr<detail::ConoscopeEvaluator> evaluator_;
+};
 
 /// Renders the figure. With `integrator` (white light): 3 channels, CIE XYZ with Y = 1 for a perfect
 /// transmitter. Without it: 1 channel, the transmission at the single wavelength of `settings`. Pixels
