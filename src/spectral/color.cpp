@@ -99,14 +99,21 @@ double delta_e_2000(const Eigen::Vector3d& lab1, const Eigen::Vector3d& lab2) {
 
 namespace petroscope {
 
-Image xyz_image_to_linear_srgb(const Image& xyz, const Eigen::Vector3d& source_white_xyz, bool white_balance,
-                               double exposure) {
+Eigen::Matrix3d xyz_to_display_matrix(const Eigen::Vector3d& source_white_xyz, bool white_balance, double exposure) {
     const Eigen::Matrix3d adaptation =
         white_balance ? bradford_adaptation(source_white_xyz, srgb_white_xyz()) : Eigen::Matrix3d::Identity();
+    Eigen::Matrix3d to_srgb;
+    for (int c = 0; c < 3; ++c) to_srgb.col(c) = xyz_to_linear_srgb(Eigen::Vector3d::Unit(c));
+    return exposure * to_srgb * adaptation;
+}
+
+Image xyz_image_to_linear_srgb(const Image& xyz, const Eigen::Vector3d& source_white_xyz, bool white_balance,
+                               double exposure) {
+    const Eigen::Matrix3d display = xyz_to_display_matrix(source_white_xyz, white_balance, exposure);
     Image rgb(xyz.width, xyz.height, 3);
     for (std::size_t i = 0; i < xyz.pixels.size(); i += 3) {
         const Eigen::Vector3d value(xyz.pixels[i], xyz.pixels[i + 1], xyz.pixels[i + 2]);
-        const Eigen::Vector3d linear = exposure * xyz_to_linear_srgb(adaptation * value);
+        const Eigen::Vector3d linear = display * value;
         for (int c = 0; c < 3; ++c) rgb.pixels[i + static_cast<std::size_t>(c)] = static_cast<float>(linear[c]);
     }
     return rgb;

@@ -29,6 +29,10 @@ double delta_e_2000(const Eigen::Vector3d& lab1, const Eigen::Vector3d& lab2);
 
 namespace petroscope {
 
+/// The display conversion of one XYZ colour as a matrix: exposure · M_sRGB · (Bradford adaptation to the
+/// sRGB white when `white_balance`).
+Eigen::Matrix3d xyz_to_display_matrix(const Eigen::Vector3d& source_white_xyz, bool white_balance, double exposure);
+
 /// Display conversion of an XYZ image seen under a light whose white is `source_white_xyz`: optional
 /// Bradford white balance to the sRGB white, linear sRGB, times `exposure`.
 Image xyz_image_to_linear_srgb(const Image& xyz, const Eigen::Vector3d& source_white_xyz, bool white_balance,

@@ -1,0 +1,110 @@
+#pragma once
+// Fitting a photograph of a conoscopic figure: the slab thickness, and the unknowns of a real photo (the
+// figure's centre and angular scale, the camera's rotation against the polarizers, the optic axis's
+// tilt and azimuth, and the camera's response), by a global search over thickness followed by Ceres.
+// The model and the method: docs/fitting.md.
+#include "petroscope/core/image.hpp"
+#include "petroscope/core/progress.hpp"
+#include "petroscope/microscope/conoscope.hpp"
+
+#include <Eigen/Core>
+
+#include <array>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace petroscope {
+
+/// The model's parameters, in the order of the parameter vector.
+enum class PhotoParameter : int {
+    thickness_um,     // slab thickness
+    center_x_px,      // the figure's centre (the microscope axis) in the photo, pixel units, x to the right
+    center_y_px,      //   … and y down (pixel centres at integer + 0.5)
+    field_radius_px,  // the angular scale: the radius in pixels of the field edge, sin θ_air = NA
+    rotation_deg,     // the image turned counter-clockwise against the lab (polarizers and stage)
+    tilt_deg,         // the cut direction tilted away from the microscope axis (cut_orientation)
+    azimuth_deg,      //   … toward this azimuth, from E toward N
+    gain_r,           // camera: value = black + (gain·linear sRGB)^(1/gamma), per channel
+    gain_g,
+    gain_b,
+    black_level,
+    gamma,
+    blur_variance_px2,  // Gaussian blur of the optics and camera: σ² in pixels² (σ² rather than σ: the
+                        // model is smooth in σ² down to 0, where ∂/∂σ would vanish)
+};
+constexpr int kPhotoParameterCount = 13;
+using PhotoParameters = std::array<double, kPhotoParameterCount>;
+using PhotoParameterFlags = std::array<bool, kPhotoParameterCount>;
+
+inline double& at(PhotoParameters& values, PhotoParameter p) { return values[static_cast<std::size_t>(p)]; }
+inline double at(const PhotoParameters& values, PhotoParameter p) { return values[static_cast<std::size_t>(p)]; }
+
+/// "thickness_um", "center_x_px", …
+std::string_view photo_parameter_name(PhotoParameter parameter);
+
+/// Everything about the figure that is not fitted.
+struct ConoscopePhotoModel {
+    /// NA, polars, stage, surrounding medium, wavelengths (crystal_axes and thickness_um are not used).
+    ConoscopeSettings settings;
+    PrincipalIndexFunction principal_n;
+    /// The indicatrix axes for a tilt and azimuth (e.g. cut_orientation for the photo's cut).
+    std::function<Eigen::Matrix3d(double tilt_deg, double azimuth_deg)> orientation;
+    /// Linear sRGB per unit transmission at each wavelength of settings (white light: the colour
+    /// integrator's weights through the display conversion; monochromatic light: (1, 1, 1)).
+    std::vector<Eigen::Vector3d> rgb_per_transmission;
+};
+
+/// Starting values for a photo of this size: centre of the image, field radius half the shorter side,
+/// thickness 30 µm, no tilt, unit gains, black 0, gamma 2.2, blur 1 px.
+PhotoParameters default_photo_parameters(int width_px, int height_px);
+
+struct ConoscopeFitOptions {
+    PhotoParameters initial{};
+    PhotoParameterFlags free{};       // fixed parameters keep their initial value
+    double thickness_min_um = 5.0;    // the global search covers this range
+    double thickness_max_um = 5000.0;
+    int candidates = 3;               // thickness minima refined by Ceres
+    double robust_scale = 0.05;       // Cauchy loss: residuals (in photo values, 0 … 1) beyond this count less
+    double saturated_level = 0.995;   // pixels with a channel at or above this are not used
+};
+
+/// One minimum of the cost over thickness, after refinement on the blurred (coarse) level.
+struct ThicknessCandidate {
+    double start_thickness_um = 0.0;  // where the global search found it
+    double thickness_um = 0.0;        // after refinement
+    double cost = 0.0;                // mean robust cost per residual on the coarse level
+};
+
+struct FittedValue {
+    double value = 0.0;
+    std::optional<double> sigma;  // 1σ; none when fixed or not identifiable
+    bool free = false;
+    bool identifiable = true;     // false: the photo does not determine it (value is meaningless)
+};
+
+struct ConoscopeFitResult {
+    PhotoParameters values{};
+    std::array<FittedValue, kPhotoParameterCount> parameters{};
+    std::vector<ThicknessCandidate> candidates;  // best first
+    std::vector<std::string> warnings;
+    double rms_residual = 0.0;       // photo values, over the pixels used
+    double explained_variance = 0.0; // R² of the photo's values over the pixels used
+    int pixels_used = 0;
+    int pixels_saturated = 0;
+    int iterations = 0;
+    bool acceptable = false;
+    std::string verdict;             // why the fit is (not) acceptable
+};
+
+/// Fits `photo` (3 channels of camera values in 0 … 1; 1 channel accepted in monochromatic light).
+/// Throws InputError for a photo that cannot be fitted (too small, grayscale in white light, saturated).
+ConoscopeFitResult fit_conoscope_photo(const Image& photo, const ConoscopePhotoModel& model, const ConoscopeFitOptions& options,
+                                       const ProgressCallback& progress = {});
+
+/// The model's photo at `values`: camera values (3 channels), 0 outside the field.
+Image render_conoscope_photo(const ConoscopePhotoModel& model, const PhotoParameters& values, int width_px, int height_px);
+
+}  // namespace petroscope

@@ -1,0 +1,477 @@
+#include "petroscope/fit/conoscope_fit.hpp"
+
+#include "photo_cost.hpp"
+#include "photo_model.hpp"
+
+#include "petroscope/core/error.hpp"
+#include "petroscope/core/text.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <ceres/ceres.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+#include <cmath>
+#include <memory>
+#include <numeric>
+
+namespace petroscope {
+namespace {
+
+using detail::PhotoCost;
+using detail::PhotoLevel;
+
+constexpr std::array<std::string_view, kPhotoParameterCount> kNames{
+    "thickness_um", "center_x_px", "center_y_px", "field_radius_px", "rotation_deg", "tilt_deg", "azimuth_deg",
+    "gain_r",       "gain_g",      "gain_b",      "black_level",     "gamma",        "blur_variance_px2"};
+
+constexpr std::size_t index_of(PhotoParameter p) { return static_cast<std::size_t>(p); }
+
+// A 1σ beyond these says the photo does not determine the parameter (in its own unit; thickness relative).
+constexpr std::array<double, kPhotoParameterCount> kUnidentifiedSigma{0.2, 0.0, 0.0, 0.0, 20.0, 20.0, 45.0,
+                                                                      0.5, 0.5, 0.5, 0.2,    1.0,  25.0};
+
+/// `value` with `digits` significant digits, for messages.
+std::string significant(double value, int digits) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.*g", digits, value);
+    return text;
+}
+
+/// The photo as three channels of camera values; InputError for what cannot be fitted.
+Image colour_photo(const Image& photo, bool white_light) {
+    if (photo.width < 32 || photo.height < 32) {
+        throw InputError("the photo is " + std::to_string(photo.width) + "x" + std::to_string(photo.height) +
+                         " px: too small for a fit (at least 32x32)");
+    }
+    bool grey = photo.channels < 3;
+    if (!grey) {
+        double largest_difference = 0.0;
+        for (int y = 0; y < photo.height; ++y) {
+            for (int x = 0; x < photo.width; ++x) {
+                largest_difference = std::max({largest_difference, std::abs(double(photo.at(x, y, 0)) - photo.at(x, y, 1)),
+                                               std::abs(double(photo.at(x, y, 1)) - photo.at(x, y, 2))});
+            }
+        }
+        grey = largest_difference < 0.5 / 255.0;
+    }
+    if (grey && white_light) {
+        throw InputError("the photo is grayscale, but the figure is in white light, whose interference colours the fit compares; "
+                         "give a colour photo, or fit in monochromatic light (--wavelength)");
+    }
+    Image rgb(photo.width, photo.height, 3);
+    for (int y = 0; y < photo.height; ++y) {
+        for (int x = 0; x < photo.width; ++x) {
+            for (int c = 0; c < 3; ++c) {
+                const float value = photo.at(x, y, std::min(c, photo.channels >= 3 ? 2 : 0));
+                if (!std::isfinite(value)) throw InputError("the photo has a non-finite value at pixel (" + std::to_string(x) + ", " + std::to_string(y) + ")");
+                rgb.at(x, y, c) = value;
+            }
+        }
+    }
+    return rgb;
+}
+
+/// The field edge's radius around `centre`: where the mean value on circles about it falls below a fifth
+/// of the inner field's (conoscopic photos show the lit aperture on black). `fallback` when not found.
+double field_edge_radius(const Image& photo, const Eigen::Vector2d& centre, double fallback) {
+    const int bins = static_cast<int>(std::hypot(photo.width, photo.height)) + 1;
+    std::vector<double> sum(bins, 0.0), count(bins, 0.0);
+    for (int y = 0; y < photo.height; ++y) {
+        for (int x = 0; x < photo.width; ++x) {
+            const int bin = static_cast<int>(std::hypot(x + 0.5 - centre.x(), y + 0.5 - centre.y()));
+            sum[bin] += (photo.at(x, y, 0) + photo.at(x, y, 1) + photo.at(x, y, 2)) / 3.0;
+            count[bin] += 1.0;
+        }
+    }
+    const auto mean = [&](int bin) { return sum[bin] / std::max(count[bin], 1.0); };
+    const int inner = static_cast<int>(0.5 * fallback);
+    std::vector<double> inner_means;
+    for (int bin = 0; bin < inner; ++bin) inner_means.push_back(mean(bin));
+    if (inner_means.empty()) return fallback;
+    std::nth_element(inner_means.begin(), inner_means.begin() + inner_means.size() / 2, inner_means.end());
+    const double threshold = 0.2 * inner_means[inner_means.size() / 2];
+    for (int bin = inner; bin + 5 < bins; ++bin) {
+        // A ring mostly outside the image says nothing.
+        if (count[bin] < 0.3 * 2.0 * 3.14159 * (bin + 0.5)) break;
+        bool dark = true;
+        for (int k = 0; k < 5 && dark; ++k) dark = mean(bin + k) < threshold;
+        if (dark) return bin;
+    }
+    return fallback;
+}
+
+struct Bounds {
+    std::array<double, kPhotoParameterCount> lower, upper;
+};
+
+Bounds parameter_bounds(const ConoscopeFitOptions& options, const Image& photo) {
+    const double size = std::max(photo.width, photo.height);
+    Bounds b;
+    b.lower = {0.5 * options.thickness_min_um, -size, -size, 0.05 * size, -360.0, -89.0, -720.0, 1e-3, 1e-3, 1e-3, -0.5, 0.5, 0.0};
+    b.upper = {2.0 * options.thickness_max_um, 2.0 * size, 2.0 * size, 5.0 * size, 360.0, 89.0, 720.0, 1e3, 1e3, 1e3, 0.9, 5.0, 2500.0};
+    return b;
+}
+
+/// The least-squares problem of one level over `values` (which must outlive it): fixed parameters held
+/// by a subset manifold, free ones within their bounds.
+std::unique_ptr<ceres::Problem> make_problem(const PhotoLevel& level, PhotoParameters& values, const ConoscopeFitOptions& options,
+                                             const Bounds& bounds) {
+    auto problem = std::make_unique<ceres::Problem>();
+    problem->AddResidualBlock(new PhotoCost(level, options.free, options.robust_scale), nullptr, values.data());
+    std::vector<int> fixed;
+    for (int j = 0; j < kPhotoParameterCount; ++j) {
+        if (!options.free[static_cast<std::size_t>(j)]) fixed.push_back(j);
+    }
+    if (fixed.size() == kPhotoParameterCount) {
+        problem->SetParameterBlockConstant(values.data());
+    } else if (!fixed.empty()) {
+        problem->SetManifold(values.data(), new ceres::SubsetManifold(kPhotoParameterCount, fixed));
+    }
+    for (int j = 0; j < kPhotoParameterCount; ++j) {
+        const auto k = static_cast<std::size_t>(j);
+        if (!options.free[k]) continue;
+        values[k] = std::clamp(values[k], bounds.lower[k], bounds.upper[k]);
+        problem->SetParameterLowerBound(values.data(), j, bounds.lower[k]);
+        problem->SetParameterUpperBound(values.data(), j, bounds.upper[k]);
+    }
+    return problem;
+}
+
+/// Least squares on one level from `values`; returns the final Ceres cost and adds the iterations.
+double solve_level(const PhotoLevel& level, PhotoParameters& values, const ConoscopeFitOptions& options, const Bounds& bounds,
+                   int max_iterations, double function_tolerance, int& iterations) {
+    const std::unique_ptr<ceres::Problem> problem = make_problem(level, values, options, bounds);
+    ceres::Solver::Options solver;
+    solver.linear_solver_type = ceres::DENSE_QR;
+    solver.max_num_iterations = max_iterations;
+    solver.num_threads = 1;  // the cost function uses every core itself
+    solver.function_tolerance = function_tolerance;
+    solver.parameter_tolerance = 1e-9;
+    solver.logging_type = ceres::SILENT;
+    ceres::Solver::Summary summary;
+    ceres::Solve(solver, problem.get(), &summary);
+    iterations += static_cast<int>(summary.iterations.size());
+    return summary.final_cost;
+}
+
+/// The lowest local minima of the cost over thickness at the starting geometry: at each thickness the
+/// camera is taken linear in x^(1/γ) per channel (gain and black level solved exactly), so the search
+/// needs no other unknown. Steps are a fraction of the finest fringe the blurred lattice resolves.
+std::vector<double> thickness_minima(const PhotoLevel& level, const PhotoParameters& start, const ConoscopeFitOptions& options) {
+    std::vector<InterferenceTerms> terms;
+    detail::PhaseDerivatives phase;
+    level.evaluator.terms(start, terms);
+    level.evaluator.phase_derivatives(terms, phase);
+    const double blur2 = at(start, PhotoParameter::blur_variance_px2) + level.extra_blur_px * level.extra_blur_px;
+    // Fringes are resolved (attenuation above e^−2) while σ²d²|∇Φ|² < 4: the largest phase among those
+    // sets the step, found from the terms sorted by |∇Φ|.
+    std::vector<std::pair<double, double>> by_gradient;  // (|∇Φ|², |Φ|)
+    for (std::size_t k = 0; k < terms.size(); ++k) by_gradient.emplace_back(phase.gradient2[k], std::abs(terms[k].phase_per_um));
+    std::sort(by_gradient.begin(), by_gradient.end());
+    std::vector<double> running_max(by_gradient.size());
+    double largest = 0.0;
+    for (std::size_t k = 0; k < by_gradient.size(); ++k) running_max[k] = largest = std::max(largest, by_gradient[k].second);
+    const auto resolved_phase_per_um = [&](double thickness_um) {
+        const double limit = 4.0 / (blur2 * thickness_um * thickness_um);
+        const auto end = std::upper_bound(by_gradient.begin(), by_gradient.end(), std::pair{limit, 1e300});
+        return end == by_gradient.begin() ? 0.0 : running_max[static_cast<std::size_t>(end - by_gradient.begin()) - 1];
+    };
+    const double gamma = at(start, PhotoParameter::gamma);
+    std::vector<double> thicknesses, costs;
+    detail::LinearSamples linear;
+    for (double t = options.thickness_min_um; t <= options.thickness_max_um;) {
+        level.evaluator.linear(terms, phase, t, blur2, false, linear);
+        double cost = 0.0;
+        for (int c = 0; c < 3; ++c) {
+            // Least squares y ≈ a·z + b with z = max(x, 0)^(1/γ).
+            double n = 0, sz = 0, sy = 0, szz = 0, szy = 0, syy = 0;
+            for (std::size_t k = 0; k < linear.rgb.size(); ++k) {
+                if (level.usable[k] == 0) continue;
+                const double z = std::pow(std::max(linear.rgb[k][c], 0.0), 1.0 / gamma), y = level.observed[k][c];
+                n += 1;
+                sz += z;
+                sy += y;
+                szz += z * z;
+                szy += z * y;
+                syy += y * y;
+            }
+            const double vz = szz - sz * sz / n, vy = syy - sy * sy / n, cov = szy - sz * sy / n;
+            cost += vz > 1e-300 ? vy - cov * cov / vz : vy;
+        }
+        thicknesses.push_back(t);
+        costs.push_back(cost);
+        const double step = std::clamp(0.25 / (resolved_phase_per_um(t) * t + 1e-12), 2e-4, 0.05);
+        t *= 1.0 + step;
+    }
+    std::vector<std::size_t> minima;
+    for (std::size_t i = 0; i < costs.size(); ++i) {
+        const bool left = i == 0 || costs[i] <= costs[i - 1];
+        const bool right = i + 1 == costs.size() || costs[i] <= costs[i + 1];
+        if (left && right) minima.push_back(i);
+    }
+    std::sort(minima.begin(), minima.end(), [&](std::size_t a, std::size_t b) { return costs[a] < costs[b]; });
+    std::vector<double> result;
+    for (std::size_t k = 0; k < minima.size() && static_cast<int>(k) < options.candidates; ++k) result.push_back(thicknesses[minima[k]]);
+    return result;
+}
+
+struct Statistics {
+    double rms = 0.0, explained_variance = 0.0;
+};
+
+Statistics residual_statistics(const PhotoLevel& level, const PhotoCost& cost, const PhotoParameters& values) {
+    const std::vector<Eigen::Vector3d> model = cost.model_values(values);
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero(), sum2 = Eigen::Vector3d::Zero();
+    double squared = 0.0, n = 0.0;
+    for (std::size_t k = 0; k < model.size(); ++k) {
+        if (level.usable[k] == 0) continue;
+        squared += (model[k] - level.observed[k]).squaredNorm();
+        sum += level.observed[k];
+        sum2 += level.observed[k].cwiseProduct(level.observed[k]);
+        n += 1.0;
+    }
+    const double total = (sum2 - sum.cwiseProduct(sum) / n).sum();
+    return {std::sqrt(squared / (3.0 * n)), total > 0.0 ? 1.0 - squared / total : 0.0};
+}
+
+/// 1σ from the Ceres covariance C = (JᵀJ)⁻¹ made robust to residuals that are correlated over the photo
+/// (blur, JPEG blocks, what the model leaves out): the cluster sandwich C·(Σ_b g_b g_bᵀ)·C with
+/// g_b = J_bᵀr_b summed over square blocks of the field (Liang & Zeger 1986; Cameron & Miller 2015, eq. 11),
+/// times G/(G − 1) for G blocks. Which free parameters the photo does not determine: those in near-null
+/// directions of the scaled normal matrix, or with a huge 1σ.
+void uncertainties(ceres::Problem& problem, const PhotoCost& cost, const PhotoLevel& level, ConoscopeFitResult& result,
+                   const ConoscopeFitOptions& options) {
+    std::vector<int> free_indices;
+    for (int j = 0; j < kPhotoParameterCount; ++j) {
+        if (options.free[static_cast<std::size_t>(j)]) free_indices.push_back(j);
+    }
+    const int m = cost.num_residuals();
+    const int p = static_cast<int>(free_indices.size());
+    std::vector<double> residuals(static_cast<std::size_t>(m));
+    std::vector<double> jacobian(static_cast<std::size_t>(m) * kPhotoParameterCount);
+    const double* parameter_block = result.values.data();
+    double* jacobian_block = jacobian.data();
+    cost.Evaluate(&parameter_block, residuals.data(), &jacobian_block);
+    // Blocks of a quarter of the field radius.
+    const double block_px = 0.25 * at(result.values, PhotoParameter::field_radius_px);
+    std::map<std::pair<int, int>, Eigen::Matrix<double, kPhotoParameterCount, 1>> scores;
+    for (std::size_t k = 0; k < level.evaluator.sample_count(); ++k) {
+        const Eigen::Vector2d& pixel = level.evaluator.lattice().pixels[k];
+        auto& score = scores.try_emplace({static_cast<int>(std::floor(pixel.x() / block_px)), static_cast<int>(std::floor(pixel.y() / block_px))},
+                                         Eigen::Matrix<double, kPhotoParameterCount, 1>::Zero()).first->second;
+        for (std::size_t row = 3 * k; row < 3 * k + 3; ++row) {
+            score += Eigen::Map<const Eigen::Matrix<double, kPhotoParameterCount, 1>>(jacobian.data() + row * kPhotoParameterCount) * residuals[row];
+        }
+    }
+    Eigen::Matrix<double, kPhotoParameterCount, kPhotoParameterCount> meat = Eigen::Matrix<double, kPhotoParameterCount, kPhotoParameterCount>::Zero();
+    for (const auto& [cell, score] : scores) meat += score * score.transpose();
+    const double clusters = static_cast<double>(scores.size());
+    meat *= clusters / std::max(clusters - 1.0, 1.0);
+
+    Eigen::MatrixXd normal = Eigen::MatrixXd::Zero(p, p);
+    for (int row = 0; row < m; ++row) {
+        const double* jr = jacobian.data() + static_cast<std::size_t>(row) * kPhotoParameterCount;
+        for (int a = 0; a < p; ++a) {
+            for (int b = 0; b <= a; ++b) normal(a, b) += jr[free_indices[a]] * jr[free_indices[b]];
+        }
+    }
+    normal = normal.selfadjointView<Eigen::Lower>();
+    const Eigen::VectorXd scale = normal.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
+    const Eigen::MatrixXd scaled = scale.asDiagonal() * normal * scale.asDiagonal();
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(scaled);
+    std::vector<bool> unidentified(kPhotoParameterCount, false);
+    const double largest = eigen.eigenvalues().maxCoeff();
+    for (int e = 0; e < p; ++e) {
+        if (eigen.eigenvalues()[e] > 1e-9 * largest) continue;
+        for (int a = 0; a < p; ++a) {
+            if (std::abs(eigen.eigenvectors()(a, e)) > 0.2) unidentified[static_cast<std::size_t>(free_indices[a])] = true;
+        }
+    }
+
+    ceres::Covariance::Options covariance_options;
+    covariance_options.algorithm_type = ceres::DENSE_SVD;
+    covariance_options.null_space_rank = -1;  // near-null directions are reported as unidentified above
+    covariance_options.min_reciprocal_condition_number = 1e-14;
+    ceres::Covariance covariance(covariance_options);
+    std::vector<double> block(kPhotoParameterCount * kPhotoParameterCount, 0.0);
+    const std::vector<std::pair<const double*, const double*>> blocks{{result.values.data(), result.values.data()}};
+    const bool computed = covariance.Compute(blocks, &problem) &&
+                          covariance.GetCovarianceBlock(result.values.data(), result.values.data(), block.data());
+
+    const Eigen::Map<const Eigen::Matrix<double, kPhotoParameterCount, kPhotoParameterCount, Eigen::RowMajor>> bread(block.data());
+    const Eigen::Matrix<double, kPhotoParameterCount, kPhotoParameterCount> sandwich = bread * meat * bread.transpose();
+    const double radius = at(result.values, PhotoParameter::field_radius_px);
+    for (int j = 0; j < kPhotoParameterCount; ++j) {
+        const auto k = static_cast<std::size_t>(j);
+        FittedValue& fitted = result.parameters[k];
+        fitted.value = result.values[k];
+        fitted.free = options.free[k];
+        if (!fitted.free) continue;
+        const double variance_j = sandwich(j, j);
+        const double sigma = computed && variance_j >= 0.0 ? std::sqrt(variance_j) : std::numeric_limits<double>::infinity();
+        double limit = kUnidentifiedSigma[k];
+        if (j == static_cast<int>(PhotoParameter::thickness_um)) limit *= fitted.value;
+        if (j >= static_cast<int>(PhotoParameter::center_x_px) && j <= static_cast<int>(PhotoParameter::field_radius_px)) limit = 0.1 * radius;
+        fitted.identifiable = !unidentified[k] && std::isfinite(sigma) && sigma <= limit;
+        if (fitted.identifiable) fitted.sigma = sigma;
+    }
+    // Pairs the photo cannot tell apart (|correlation| > 0.999): neither is a measurement.
+    for (int a = 0; a < p; ++a) {
+        for (int b = 0; b < a; ++b) {
+            const auto ka = static_cast<std::size_t>(free_indices[a]), kb = static_cast<std::size_t>(free_indices[b]);
+            const double denominator = std::sqrt(block[ka * kPhotoParameterCount + ka] * block[kb * kPhotoParameterCount + kb]);
+            if (!(denominator > 0.0)) continue;
+            const double correlation = block[ka * kPhotoParameterCount + kb] / denominator;
+            if (std::abs(correlation) > 0.999) {
+                result.warnings.push_back(std::string(kNames[kb]) + " and " + std::string(kNames[ka]) + " are correlated " +
+                                          significant(correlation, 4) + ": the photo determines only a combination of them");
+                for (const std::size_t k : {ka, kb}) {
+                    result.parameters[k].identifiable = false;
+                    result.parameters[k].sigma.reset();
+                }
+            }
+        }
+    }
+    const auto& thickness = result.parameters[index_of(PhotoParameter::thickness_um)];
+    const auto& scale_fit = result.parameters[index_of(PhotoParameter::field_radius_px)];
+    if (thickness.free && !thickness.identifiable && scale_fit.free) {
+        result.warnings.push_back("the thickness is not determined: a centred uniaxial figure fixes only thickness x scale^2 "
+                                  "(the ring radii); fix the scale (--fix field-radius-px=...) or use an off-centre figure");
+    }
+    for (int j = 0; j < kPhotoParameterCount; ++j) {
+        const FittedValue& fitted = result.parameters[static_cast<std::size_t>(j)];
+        if (fitted.free && !fitted.identifiable) {
+            result.warnings.push_back(std::string(kNames[static_cast<std::size_t>(j)]) + " is not determined by this photo; its value is not a measurement");
+        }
+    }
+}
+
+}  // namespace
+
+std::string_view photo_parameter_name(PhotoParameter parameter) { return kNames[index_of(parameter)]; }
+
+PhotoParameters default_photo_parameters(int width_px, int height_px) {
+    PhotoParameters values{};
+    at(values, PhotoParameter::thickness_um) = 30.0;
+    at(values, PhotoParameter::center_x_px) = 0.5 * width_px;
+    at(values, PhotoParameter::center_y_px) = 0.5 * height_px;
+    at(values, PhotoParameter::field_radius_px) = 0.5 * std::min(width_px, height_px);
+    at(values, PhotoParameter::gain_r) = at(values, PhotoParameter::gain_g) = at(values, PhotoParameter::gain_b) = 1.0;
+    at(values, PhotoParameter::gamma) = 2.2;
+    at(values, PhotoParameter::blur_variance_px2) = 1.0;
+    return values;
+}
+
+ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePhotoModel& model, const ConoscopeFitOptions& options,
+                                       const ProgressCallback& progress) {
+    if (!(options.thickness_min_um > 0.0) || !(options.thickness_max_um >= options.thickness_min_um)) {
+        throw InputError("the thickness range must be positive and ordered, e.g. 10um:5mm");
+    }
+    if (model.rgb_per_transmission.size() != model.settings.wavelengths_nm.size()) {
+        throw InputError("the colour weights and the figure use different wavelength grids");
+    }
+    const bool white_light = model.settings.wavelengths_nm.size() > 1;
+    const Image photo = colour_photo(photo_in, white_light);
+    PhotoParameters start = options.initial;
+    const Eigen::Vector2d centre(at(start, PhotoParameter::center_x_px), at(start, PhotoParameter::center_y_px));
+    const double edge = field_edge_radius(photo, centre, at(start, PhotoParameter::field_radius_px));
+    if (options.free[index_of(PhotoParameter::field_radius_px)]) at(start, PhotoParameter::field_radius_px) = edge;
+    const double sample_radius = 0.85 * std::min(edge, at(start, PhotoParameter::field_radius_px));
+    const double radius = at(start, PhotoParameter::field_radius_px);
+
+    // Three levels: the thickness search, a blurred refinement that finds the geometry, the full photo;
+    // each samples the field on a lattice of about this many pixels.
+    const auto stride = [&](double samples) {
+        return std::max(1, static_cast<int>(std::lround(std::sqrt(3.14159 * sample_radius * sample_radius / samples))));
+    };
+    const auto level = [&](int lattice_stride, double extra_blur) {
+        return std::make_unique<PhotoLevel>(model, detail::sample_lattice(centre, sample_radius, lattice_stride, photo.width, photo.height),
+                                            photo, extra_blur, at(start, PhotoParameter::gamma), options.saturated_level);
+    };
+    const int search_stride = stride(2500.0), coarse_stride = stride(5000.0);
+    const auto search = level(search_stride, search_stride);
+    const auto coarse = level(coarse_stride, 0.75 * coarse_stride);
+    const auto fine = level(stride(15000.0), 0.0);
+    if (fine->usable_count < 0.1 * static_cast<double>(fine->evaluator.sample_count()) || fine->usable_count < 50) {
+        throw InputError("the photo is saturated: only " + std::to_string(fine->usable_count) + " of " +
+                         std::to_string(fine->evaluator.sample_count()) + " sample pixels in the field are below full scale");
+    }
+    if (progress) progress(0.02);
+
+    ConoscopeFitResult result;
+    result.pixels_used = fine->usable_count;
+    result.pixels_saturated = static_cast<int>(fine->evaluator.sample_count()) - fine->usable_count;
+    std::vector<double> starts{at(start, PhotoParameter::thickness_um)};
+    if (options.free[index_of(PhotoParameter::thickness_um)]) starts = thickness_minima(*search, start, options);
+    if (progress) progress(0.15);
+
+    const Bounds bounds = parameter_bounds(options, photo);
+    // Every minimum is refined on the coarse level (where their costs compare), the best on the full photo.
+    std::vector<PhotoParameters> refined;
+    for (std::size_t k = 0; k < starts.size(); ++k) {
+        PhotoParameters values = start;
+        at(values, PhotoParameter::thickness_um) = starts[k];
+        const double cost = solve_level(*coarse, values, options, bounds, 30, 1e-6, result.iterations);
+        const double thickness = at(values, PhotoParameter::thickness_um);
+        const bool repeated = std::any_of(result.candidates.begin(), result.candidates.end(), [&](const ThicknessCandidate& other) {
+            return std::abs(other.thickness_um - thickness) < 1e-3 * thickness;
+        });
+        if (!repeated) {
+            result.candidates.push_back({starts[k], thickness, cost / std::max(1, 3 * coarse->usable_count)});
+            refined.push_back(values);
+        }
+        if (progress) progress(0.15 + 0.5 * static_cast<double>(k + 1) / static_cast<double>(starts.size()));
+    }
+    const std::size_t best = static_cast<std::size_t>(
+        std::min_element(result.candidates.begin(), result.candidates.end(),
+                         [](const ThicknessCandidate& a, const ThicknessCandidate& b) { return a.cost < b.cost; }) - result.candidates.begin());
+    result.values = refined[best];
+    const double best_cost = solve_level(*fine, result.values, options, bounds, 40, 1e-8, result.iterations) / std::max(1, 3 * fine->usable_count);
+    std::sort(result.candidates.begin(), result.candidates.end(),
+              [](const ThicknessCandidate& a, const ThicknessCandidate& b) { return a.cost < b.cost; });
+    if (progress) progress(0.95);
+
+    const PhotoCost cost(*fine, options.free, options.robust_scale);
+    const std::unique_ptr<ceres::Problem> final_problem = make_problem(*fine, result.values, options, bounds);
+    uncertainties(*final_problem, cost, *fine, result, options);
+    const Statistics statistics = residual_statistics(*fine, cost, result.values);
+    result.rms_residual = statistics.rms;
+    result.explained_variance = statistics.explained_variance;
+    // An acceptable fit explains most of the photo's variation (a figure of another crystal, or no
+    // figure at all, leaves it unexplained).
+    constexpr double kMinimumExplained = 0.5;
+    result.acceptable = std::isfinite(statistics.explained_variance) && statistics.explained_variance >= kMinimumExplained;
+    result.verdict = result.acceptable ? "the model explains " + significant(100.0 * statistics.explained_variance, 3) +
+                                             "% of the photo's variance (rms residual " + significant(statistics.rms, 3) + ")"
+                                       : "no acceptable fit: the best model explains only " +
+                                             significant(100.0 * statistics.explained_variance, 3) + "% of the photo's variance (cost " +
+                                             significant(best_cost, 4) + " per residual, rms residual " + significant(statistics.rms, 3) + ")";
+    if (progress) progress(1.0);
+    return result;
+}
+
+Image render_conoscope_photo(const ConoscopePhotoModel& model, const PhotoParameters& values, int width_px, int height_px) {
+    const Eigen::Vector2d centre(at(values, PhotoParameter::center_x_px), at(values, PhotoParameter::center_y_px));
+    const detail::PhotoModelEvaluator evaluator(
+        model, detail::sample_lattice(centre, at(values, PhotoParameter::field_radius_px), 1, width_px, height_px));
+    std::vector<InterferenceTerms> terms;
+    detail::PhaseDerivatives phase;
+    evaluator.terms(values, terms);
+    evaluator.phase_derivatives(terms, phase);
+    detail::LinearSamples linear;
+    evaluator.linear(terms, phase, at(values, PhotoParameter::thickness_um), at(values, PhotoParameter::blur_variance_px2), false, linear);
+    Image image(width_px, height_px, 3);
+    for (std::size_t k = 0; k < linear.rgb.size(); ++k) {
+        const Eigen::Vector2d& pixel = evaluator.lattice().pixels[k];
+        for (int c = 0; c < 3; ++c) {
+            const double value = detail::camera_value(linear.rgb[k][c], values[index_of(PhotoParameter::gain_r) + static_cast<std::size_t>(c)],
+                                                      at(values, PhotoParameter::black_level), at(values, PhotoParameter::gamma)).value;
+            image.at(static_cast<int>(pixel.x()), static_cast<int>(pixel.y()), c) = static_cast<float>(value);
+        }
+    }
+    return image;
+}
+
+}  // namespace petroscope

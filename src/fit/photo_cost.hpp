@@ -1,0 +1,53 @@
+#pragma once
+// The least-squares cost of a conoscopic photo for Ceres: one residual block of 3 residuals (R, G, B) per
+// sample pixel, robustified by a Cauchy loss inside the block (so that one block can hold every sample and
+// the expensive figure terms are computed once per evaluation for all of them).
+#include "photo_model.hpp"
+
+#include <ceres/ceres.h>
+
+#include <mutex>
+
+namespace petroscope::detail {
+
+/// One resolution level of the fit: a sample lattice and the photo's values there.
+struct PhotoLevel {
+    /// The photo is blurred by `extra_blur_px` more in linear light (decoded with `gamma`, re-encoded after).
+    PhotoLevel(const ConoscopePhotoModel& model, SampleLattice lattice, const Image& photo, double extra_blur_px, double gamma,
+               double saturated_level);
+    PhotoModelEvaluator evaluator;
+    double extra_blur_px;                     // the photo was blurred by this much more (coarse levels)
+    std::vector<Eigen::Vector3d> observed;    // camera values at the samples
+    std::vector<unsigned char> usable;        // 0: saturated (or out of the image)
+    int usable_count = 0;
+};
+
+class PhotoCost final : public ceres::CostFunction {
+public:
+    PhotoCost(const PhotoLevel& level, const PhotoParameterFlags& free, double robust_scale);
+
+    bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
+
+    /// Model camera values at the samples (no loss), for reports.
+    std::vector<Eigen::Vector3d> model_values(const PhotoParameters& values) const;
+
+private:
+    /// Linear sRGB of the samples, reusing the terms of the last geometry.
+    void linear_at(const PhotoParameters& values, bool derivatives, LinearSamples& out) const;
+
+    const PhotoLevel& level_;
+    PhotoParameterFlags free_;
+    double robust_scale_;
+    // The terms of the last geometry (the trust-region method evaluates each accepted point twice).
+    mutable std::mutex cache_mutex_;
+    mutable std::array<double, 6> cached_geometry_{};
+    mutable bool cache_valid_ = false;
+    mutable std::vector<InterferenceTerms> cached_terms_;
+    mutable PhaseDerivatives cached_phase_;
+    // The last evaluation's answer.
+    mutable PhotoParameters last_values_{};
+    mutable bool last_valid_ = false, last_has_jacobian_ = false;
+    mutable std::vector<double> last_residuals_, last_jacobian_;
+};
+
+}  // namespace petroscope::detail

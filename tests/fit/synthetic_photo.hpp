@@ -1,0 +1,127 @@
+#pragma once
+// Photographs of conoscopic figures made the way a camera makes them, for the fitting tests: the figure
+// rendered by the conoscope renderer with the field's centre, scale and the camera's rotation applied,
+// then blur, white balance, a tone curve, noise, 8-bit quantisation and JPEG compression (OpenCV).
+#include "petroscope/fit/conoscope_fit.hpp"
+#include "petroscope/io/data_files.hpp"
+#include "petroscope/optics/orientation.hpp"
+#include "petroscope/spectral/color.hpp"
+#include "petroscope/spectral/wavelength_grid.hpp"
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <cmath>
+#include <random>
+#include <string>
+
+namespace petroscope::testing {
+
+inline const MineralCatalog& fit_minerals() {
+    static const MineralCatalog catalog = load_mineral_catalog(std::filesystem::path(PETROSCOPE_SOURCE_DIR) / "minerals");
+    return catalog;
+}
+
+/// The hidden truth of a synthetic photo.
+struct PhotoTruth {
+    double thickness_um = 30.0;
+    int center_dx_px = 0, center_dy_px = 0;  // from the image centre
+    double radius_scale = 1.0;               // field radius / (size / 2)
+    double rotation_deg = 0.0;
+    double tilt_deg = 0.0, azimuth_deg = 0.0;
+    Eigen::Vector3d gains{1.0, 1.0, 1.0};
+    double gamma = 2.2;
+    double blur_px = 1.0;
+    double noise = 2.0 / 255.0;
+    int jpeg_quality = 85;  // 0: no compression
+};
+
+/// White light (D65, 380 … 780 nm by 5 nm) or one wavelength.
+struct PhotoLight {
+    std::vector<double> wavelengths_nm;
+    std::vector<Eigen::Vector3d> rgb_per_transmission;
+    std::shared_ptr<SpectralIntegrator> integrator;  // white light only
+    Eigen::Matrix3d display = Eigen::Matrix3d::Identity();
+};
+
+inline PhotoLight white_light() {
+    PhotoLight light;
+    light.wavelengths_nm = WavelengthGrid{380.0, 780.0, 5.0}.wavelengths_nm();
+    light.integrator = std::make_shared<SpectralIntegrator>(light.wavelengths_nm, load_cie_1931_observer(), load_light_source("D65"));
+    light.display = xyz_to_display_matrix(light.integrator->white_xyz(), true, 1.0);
+    for (const Eigen::Vector3d& weight : light.integrator->weights()) light.rgb_per_transmission.push_back(light.display * weight);
+    return light;
+}
+
+/// The fit's model of photos of `mineral` in `cut`, crossed polars, NA 0.85, balsam around the slab.
+inline ConoscopePhotoModel photo_model(const Mineral& mineral, Cut cut, const PhotoLight& light) {
+    ConoscopePhotoModel model;
+    model.settings.wavelengths_nm = light.wavelengths_nm;
+    model.principal_n = [&mineral](double nm) { return mineral.principal_n(nm); };
+    const Eigen::Vector3d reference_n = mineral.principal_n(mineral.reference_wavelength_nm);
+    const OpticalClass optical_class = mineral.optical_class;
+    model.orientation = [cut, optical_class, reference_n](double tilt_deg, double azimuth_deg) {
+        return cut_orientation(cut, optical_class, reference_n, azimuth_deg, tilt_deg);
+    };
+    model.rgb_per_transmission = light.rgb_per_transmission;
+    return model;
+}
+
+/// The photo (camera values 0 … 1, 3 channels) of `size_px`² that `truth` describes; `seed` for the noise.
+inline Image synthesize_photo(const ConoscopePhotoModel& model, const PhotoLight& light, const PhotoTruth& truth, int size_px,
+                              unsigned seed) {
+    // Render only the field: a square of side 2⌈R⌉ + 2 around it, with the NA scaled to match.
+    const double radius_px = truth.radius_scale * 0.5 * size_px;
+    const int render_size = 2 * static_cast<int>(std::ceil(radius_px)) + 2;
+    ConoscopeSettings settings = model.settings;
+    settings.size_px = render_size;
+    settings.numerical_aperture = model.settings.numerical_aperture * (0.5 * render_size) / radius_px;
+    settings.thickness_um = truth.thickness_um;
+    settings.crystal_axes = model.orientation(truth.tilt_deg, truth.azimuth_deg);
+    // A camera turned by ρ sees polarizers and crystal turned by ρ.
+    settings.polarizer_deg += truth.rotation_deg;
+    settings.analyzer_deg += truth.rotation_deg;
+    settings.stage_deg += truth.rotation_deg;
+    const Image figure = render_conoscope(settings, model.principal_n, light.integrator.get());
+
+    cv::Mat linear(size_px, size_px, CV_64FC3, cv::Scalar(0, 0, 0));
+    const int origin_x = size_px / 2 + truth.center_dx_px - render_size / 2, origin_y = size_px / 2 + truth.center_dy_px - render_size / 2;
+    for (int row = 0; row < render_size; ++row) {
+        for (int column = 0; column < render_size; ++column) {
+            const int x = origin_x + column, y = origin_y + row;
+            if (x < 0 || y < 0 || x >= size_px || y >= size_px) continue;
+            if (std::hypot(column + 0.5 - 0.5 * render_size, row + 0.5 - 0.5 * render_size) > radius_px) continue;
+            Eigen::Vector3d value;
+            for (int c = 0; c < 3; ++c) value[c] = figure.at(column, row, light.integrator ? c : 0);
+            const Eigen::Vector3d rgb = light.integrator ? Eigen::Vector3d(light.display * value) : value;
+            linear.at<cv::Vec3d>(y, x) = cv::Vec3d(rgb[0], rgb[1], rgb[2]);
+        }
+    }
+    if (truth.blur_px > 0.0) cv::GaussianBlur(linear, linear, cv::Size(0, 0), truth.blur_px);
+    std::mt19937 random(seed);
+    std::normal_distribution<double> noise(0.0, truth.noise);
+    cv::Mat encoded(size_px, size_px, CV_8UC3);
+    for (int y = 0; y < size_px; ++y) {
+        for (int x = 0; x < size_px; ++x) {
+            for (int c = 0; c < 3; ++c) {
+                const double exposed = std::max(truth.gains[c] * linear.at<cv::Vec3d>(y, x)[c], 0.0);
+                const double value = std::pow(exposed, 1.0 / truth.gamma) + noise(random);
+                encoded.at<cv::Vec3b>(y, x)[2 - c] = static_cast<unsigned char>(std::lround(std::clamp(value, 0.0, 1.0) * 255.0));
+            }
+        }
+    }
+    if (truth.jpeg_quality > 0) {
+        std::vector<unsigned char> bytes;
+        cv::imencode(".jpg", encoded, bytes, {cv::IMWRITE_JPEG_QUALITY, truth.jpeg_quality});
+        encoded = cv::imdecode(bytes, cv::IMREAD_COLOR);
+    }
+    Image photo(size_px, size_px, 3);
+    for (int y = 0; y < size_px; ++y) {
+        for (int x = 0; x < size_px; ++x) {
+            for (int c = 0; c < 3; ++c) photo.at(x, y, c) = static_cast<float>(encoded.at<cv::Vec3b>(y, x)[2 - c] / 255.0);
+        }
+    }
+    return photo;
+}
+
+}  // namespace petroscope::testing
