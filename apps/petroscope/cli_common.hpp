@@ -62,5 +62,6 @@ void add_verify_command(CLI::App& app, const std::string& minerals_dir);
 void add_section_command(CLI::App& app, const std::string& minerals_dir);
 void add_chart_command(CLI::App& app, const std::string& minerals_dir, const std::string& command_line);
 void add_sweep_command(CLI::App& app, const std::string& minerals_dir);
+void add_fit_command(CLI::App& app, const std::string& minerals_dir);
 
 }  // namespace petroscope::cli

@@ -338,7 +338,7 @@ void uncertainties(ceres::Problem& problem, const PhotoCost& cost, const PhotoLe
     const auto& scale_fit = result.parameters[index_of(PhotoParameter::field_radius_px)];
     if (thickness.free && !thickness.identifiable && scale_fit.free) {
         result.warnings.push_back("the thickness is not determined: a centred uniaxial figure fixes only thickness x scale^2 "
-                                  "(the ring radii); fix the scale (--fix field-radius-px=...) or use an off-centre figure");
+                                  "(the ring radii); fix the scale (--fix field_radius_px=...) or use an off-centre figure");
     }
     for (int j = 0; j < kPhotoParameterCount; ++j) {
         const FittedValue& fitted = result.parameters[static_cast<std::size_t>(j)];
@@ -379,7 +379,6 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
     const double edge = field_edge_radius(photo, centre, at(start, PhotoParameter::field_radius_px));
     if (options.free[index_of(PhotoParameter::field_radius_px)]) at(start, PhotoParameter::field_radius_px) = edge;
     const double sample_radius = 0.85 * std::min(edge, at(start, PhotoParameter::field_radius_px));
-    const double radius = at(start, PhotoParameter::field_radius_px);
 
     // Three levels: the thickness search, a blurred refinement that finds the geometry, the full photo;
     // each samples the field on a lattice of about this many pixels.

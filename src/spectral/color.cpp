@@ -22,6 +22,11 @@ double encode_srgb(double linear) {
     return 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
 }
 
+double decode_srgb(double encoded) {
+    if (encoded <= 0.04045) return encoded / 12.92;
+    return std::pow((encoded + 0.055) / 1.055, 2.4);
+}
+
 Eigen::Matrix3d bradford_adaptation(const Eigen::Vector3d& source_white_xyz, const Eigen::Vector3d& target_white_xyz) {
     Eigen::Matrix3d bradford;
     bradford << 0.8951, 0.2664, -0.1614,

@@ -13,6 +13,9 @@ Eigen::Vector3d xyz_to_linear_srgb(const Eigen::Vector3d& xyz);
 /// The sRGB transfer curve: 12.92c for c ≤ 0.0031308, else 1.055c^(1/2.4) − 0.055 (IEC 61966-2-1).
 double encode_srgb(double linear);
 
+/// The inverse of encode_srgb: c/12.92 for c ≤ 0.04045, else ((c + 0.055)/1.055)^2.4 (IEC 61966-2-1).
+double decode_srgb(double encoded);
+
 /// Bradford chromatic adaptation (Lam 1985; Lindbloom's tables): maps colours seen under a light whose
 /// white is `source_white_xyz` to how they look under `target_white_xyz`.
 Eigen::Matrix3d bradford_adaptation(const Eigen::Vector3d& source_white_xyz, const Eigen::Vector3d& target_white_xyz);

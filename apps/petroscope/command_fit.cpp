@@ -1,0 +1,277 @@
+// petroscope fit conoscope: the slab thickness (and the unknowns of a real photo) fitted to a photograph of
+// an interference figure. The method: docs/fitting.md.
+#include "cli_common.hpp"
+#include "cli_light.hpp"
+#include "frame_command.hpp"
+
+#include "petroscope/core/error.hpp"
+#include "petroscope/core/text.hpp"
+#include "petroscope/fit/conoscope_fit.hpp"
+#include "petroscope/io/atomic_file.hpp"
+#include "petroscope/io/data_files.hpp"
+#include "petroscope/io/image_writer.hpp"
+#include "petroscope/io/json_sidecar.hpp"
+#include "petroscope/optics/orientation.hpp"
+#include "petroscope/spectral/color.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <cmath>
+#include <iostream>
+#include <map>
+
+namespace petroscope::cli {
+namespace {
+
+// --free groups and the parameters they free.
+const std::map<std::string, std::vector<PhotoParameter>>& free_groups() {
+    static const std::map<std::string, std::vector<PhotoParameter>> groups{
+        {"thickness", {PhotoParameter::thickness_um}},
+        {"center", {PhotoParameter::center_x_px, PhotoParameter::center_y_px}},
+        {"scale", {PhotoParameter::field_radius_px}},
+        {"rotation", {PhotoParameter::rotation_deg}},
+        {"tilt", {PhotoParameter::tilt_deg, PhotoParameter::azimuth_deg}},
+        {"white-balance", {PhotoParameter::gain_r, PhotoParameter::gain_g, PhotoParameter::gain_b}},
+        {"black", {PhotoParameter::black_level}},
+        {"gamma", {PhotoParameter::gamma}},
+        {"blur", {PhotoParameter::blur_variance_px2}},
+    };
+    return groups;
+}
+
+struct FitOptions {
+    std::string photo, mineral = "muscovite", cut, thickness, thickness_range, output_dir;
+    std::string free = "thickness,center,scale,rotation,white-balance,black,gamma,blur";
+    std::vector<std::string> fixed;
+    double azimuth_deg = 0.0, tilt_deg = 0.0, na = 0.85, polarizer_deg = 0.0, analyzer_deg = 90.0, surround_n = 1.54;
+    int candidates = 3;
+    bool json = false;
+    LightOptions light;
+};
+
+std::pair<double, double> parse_thickness_range(const std::string& text) {
+    const auto parts = split(text, ':');
+    if (parts.size() != 2) throw InputError("--thickness-range '" + text + "': expected MIN:MAX with units, e.g. 10um:5mm");
+    const double low = positive_length_um("--thickness-range", parts[0]), high = positive_length_um("--thickness-range", parts[1]);
+    if (!(high > low)) throw InputError("--thickness-range '" + text + "': the maximum must exceed the minimum");
+    return {low, high};
+}
+
+PhotoParameter parameter_named(const std::string& option, const std::string& name) {
+    for (int j = 0; j < kPhotoParameterCount; ++j) {
+        if (photo_parameter_name(static_cast<PhotoParameter>(j)) == name) return static_cast<PhotoParameter>(j);
+    }
+    std::string names;
+    for (int j = 0; j < kPhotoParameterCount; ++j) names += (j ? ", " : "") + std::string(photo_parameter_name(static_cast<PhotoParameter>(j)));
+    throw InputError(option + " '" + name + "': unknown parameter (expected one of " + names + ")");
+}
+
+nlohmann::json report_json(const ConoscopeFitResult& result, const FitOptions& options, const ConoscopeFitOptions& fit_options,
+                           double seconds) {
+    nlohmann::json parameters = nlohmann::json::object();
+    for (int j = 0; j < kPhotoParameterCount; ++j) {
+        const FittedValue& value = result.parameters[static_cast<std::size_t>(j)];
+        parameters[std::string(photo_parameter_name(static_cast<PhotoParameter>(j)))] = {
+            {"value", value.identifiable ? nlohmann::json(value.value) : nlohmann::json(nullptr)},
+            {"value_at_minimum", value.value},
+            {"sigma", value.sigma ? nlohmann::json(*value.sigma) : nlohmann::json(nullptr)},
+            {"free", value.free},
+            {"identifiable", value.identifiable},
+            {"initial", fit_options.initial[static_cast<std::size_t>(j)]}};
+    }
+    nlohmann::json candidates = nlohmann::json::array();
+    for (const auto& candidate : result.candidates) {
+        candidates.push_back({{"start_thickness_um", candidate.start_thickness_um}, {"thickness_um", candidate.thickness_um},
+                              {"cost_per_residual", candidate.cost}});
+    }
+    return {{"program", "petroscope 0.1.0"},
+            {"command", "fit conoscope"},
+            {"photo", options.photo},
+            {"mineral", options.mineral},
+            {"cut", options.cut},
+            {"numerical_aperture", options.na},
+            {"polarizer_deg", options.polarizer_deg},
+            {"analyzer_deg", options.analyzer_deg},
+            {"surround_n", options.surround_n},
+            {"thickness_search_um", {fit_options.thickness_min_um, fit_options.thickness_max_um}},
+            {"acceptable", result.acceptable},
+            {"verdict", result.verdict},
+            {"parameters", parameters},
+            {"candidates", candidates},
+            {"warnings", result.warnings},
+            {"rms_residual", result.rms_residual},
+            {"explained_variance", result.explained_variance},
+            {"pixels_used", result.pixels_used},
+            {"pixels_saturated", result.pixels_saturated},
+            {"iterations", result.iterations},
+            {"seconds", seconds},
+            {"model", "camera value = black + (gain * linear sRGB)^(1/gamma); figure: single-pass Jones from the exact eigenmodes "
+                      "(ConoscopeTerms), blur by the local fringe approximation; see docs/fitting.md"},
+            {"sigma_meaning", "1 sigma from the Ceres covariance with a cluster-robust (sandwich) correction over blocks of the field"}};
+}
+
+std::string shown(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.6g", value);
+    return text;
+}
+
+// The camera values of `values` written so that the PNG's codes equal them.
+Image camera_values_for_png(const Image& values) {
+    Image linear = values;
+    for (float& v : linear.pixels) v = static_cast<float>(decode_srgb(std::clamp(static_cast<double>(v), 0.0, 1.0)));
+    return linear;
+}
+
+void run_fit_conoscope(const FitOptions& options, const std::string& minerals_dir) {
+    const Image photo_raw = with_option("--photo", [&] { return read_image(options.photo); });
+    if (photo_raw.width == 0 || photo_raw.height == 0) throw InputError("--photo " + options.photo + ": the image is empty");
+    const MineralCatalog catalog = load_mineral_catalog(minerals_directory(minerals_dir));
+    const Mineral& mineral = with_option("--mineral", [&]() -> const Mineral& { return catalog.find(options.mineral); });
+    const ResolvedLight light = resolve_light(options.light);
+
+    ConoscopePhotoModel model;
+    model.settings.numerical_aperture = options.na;
+    model.settings.polarizer_deg = options.polarizer_deg;
+    model.settings.analyzer_deg = options.analyzer_deg;
+    model.settings.surround_n = options.surround_n;
+    model.settings.wavelengths_nm = light.wavelengths_nm;
+    model.settings.validate();
+    model.principal_n = [&mineral](double nm) { return mineral.principal_n(nm); };
+    const Cut cut = !options.cut.empty() ? with_option("--cut", [&] { return parse_cut(options.cut); })
+                    : mineral.optical_class == OpticalClass::biaxial ? Cut::acute_bisectrix : Cut::optic_axis;
+    const Eigen::Vector3d reference_n = mineral.principal_n(mineral.reference_wavelength_nm);
+    const OpticalClass optical_class = mineral.optical_class;
+    model.orientation = [cut, optical_class, reference_n](double tilt, double azimuth) {
+        return cut_orientation(cut, optical_class, reference_n, azimuth, tilt);
+    };
+    if (light.monochromatic()) {
+        model.rgb_per_transmission.assign(1, Eigen::Vector3d::Constant(options.light.exposure));
+    } else {
+        const SpectralIntegrator integrator(light.wavelengths_nm, load_cie_1931_observer(), load_light_source(options.light.illuminant));
+        const Eigen::Matrix3d display = xyz_to_display_matrix(integrator.white_xyz(), !options.light.no_white_balance, options.light.exposure);
+        for (const Eigen::Vector3d& weight : integrator.weights()) model.rgb_per_transmission.push_back(display * weight);
+    }
+
+    ConoscopeFitOptions fit;
+    fit.initial = default_photo_parameters(photo_raw.width, photo_raw.height);
+    at(fit.initial, PhotoParameter::tilt_deg) = options.tilt_deg;
+    at(fit.initial, PhotoParameter::azimuth_deg) = options.azimuth_deg;
+    fit.candidates = options.candidates;
+    if (!options.thickness.empty()) {
+        const double start = positive_length_um("--thickness", options.thickness);
+        at(fit.initial, PhotoParameter::thickness_um) = start;
+        fit.thickness_min_um = start / 3.0;
+        fit.thickness_max_um = start * 3.0;
+    }
+    if (!options.thickness_range.empty()) std::tie(fit.thickness_min_um, fit.thickness_max_um) = parse_thickness_range(options.thickness_range);
+    if (options.thickness.empty()) at(fit.initial, PhotoParameter::thickness_um) = std::sqrt(fit.thickness_min_um * fit.thickness_max_um);
+    fit.free.fill(false);
+    for (const std::string& group : split(options.free, ',')) {
+        const auto found = free_groups().find(group);
+        if (found == free_groups().end()) {
+            std::string names;
+            for (const auto& [name, members] : free_groups()) names += (names.empty() ? "" : ", ") + name;
+            throw InputError("--free '" + group + "': unknown group (expected any of " + names + ")");
+        }
+        for (const PhotoParameter p : found->second) fit.free[static_cast<std::size_t>(p)] = true;
+    }
+    for (const std::string& assignment : options.fixed) {
+        const auto parts = split(assignment, '=');
+        const auto value = parts.size() == 2 ? parse_double(parts[1]) : std::nullopt;
+        if (!value) throw InputError("--fix '" + assignment + "': expected NAME=VALUE, e.g. field_radius_px=250 or gamma=2.2");
+        const PhotoParameter p = parameter_named("--fix", parts[0]);
+        fit.initial[static_cast<std::size_t>(p)] = *value;
+        fit.free[static_cast<std::size_t>(p)] = false;
+    }
+
+    // Reserve every output before the work starts: an unwritable folder fails at once, nothing half-written.
+    const std::filesystem::path folder(options.output_dir);
+    if (!std::filesystem::is_directory(folder)) throw InputError("-o " + options.output_dir + ": not a folder (create it first)");
+    PendingOutputs pending;
+    const auto model_png = pending.add(folder / "model.png"), side_png = pending.add(folder / "side_by_side.png");
+    const auto residual_tiff = pending.add(folder / "residual.tiff"), report_path = pending.add(folder / "report.json");
+
+    const auto begin = std::chrono::steady_clock::now();
+    const ConoscopeFitResult result = fit_conoscope_photo(photo_raw, model, fit, [](double f) { show_progress("fitting", f); });
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+
+    // The best-fit rendering, photo | model | residual (×4 around grey), and the residual as float numbers.
+    const int w = photo_raw.width, h = photo_raw.height;
+    const Image rendered = render_conoscope_photo(model, result.values, w, h);
+    Image side(3 * w, h, 3), residual(w, h, 3);
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            for (int c = 0; c < 3; ++c) {
+                const float observed = photo_raw.at(x, y, std::min(c, photo_raw.channels - 1));
+                const float difference = rendered.at(x, y, c) - observed;
+                residual.at(x, y, c) = difference;
+                side.at(x, y, c) = observed;
+                side.at(w + x, y, c) = rendered.at(x, y, c);
+                side.at(2 * w + x, y, c) = std::clamp(0.5f + 4.0f * difference, 0.0f, 1.0f);
+            }
+        }
+    }
+    const nlohmann::json report = report_json(result, options, fit, seconds);
+    write_image(camera_values_for_png(rendered), model_png, ImageFormat::png);
+    write_image(camera_values_for_png(side), side_png, ImageFormat::png);
+    write_image(residual, residual_tiff, ImageFormat::tiff);
+    write_json_file(report, report_path);
+    pending.commit();
+
+    if (options.json) {
+        std::cout << report.dump(2) << '\n';
+    } else {
+        std::cout << (result.acceptable ? "fit: " : "fit failed: ") << result.verdict << '\n';
+        for (int j = 0; j < kPhotoParameterCount; ++j) {
+            const FittedValue& v = result.parameters[static_cast<std::size_t>(j)];
+            std::cout << "  " << photo_parameter_name(static_cast<PhotoParameter>(j)) << " = ";
+            if (!v.identifiable) std::cout << "not determined (" << shown(v.value) << " at the minimum)";
+            else std::cout << shown(v.value) << (v.sigma ? " +- " + shown(*v.sigma) : std::string(v.free ? "" : " (fixed)"));
+            std::cout << '\n';
+        }
+        std::cout << "  thickness minima (coarse cost per residual):";
+        for (const auto& c : result.candidates) std::cout << ' ' << shown(c.thickness_um) << "um (" << shown(c.cost) << ")";
+        std::cout << '\n';
+        for (const auto& warning : result.warnings) std::cout << "warning: " << warning << '\n';
+        std::cout << "wrote " << (folder / "report.json").string() << ", model.png, side_by_side.png, residual.tiff (" << shown(seconds) << " s)\n";
+    }
+    if (!result.acceptable) {
+        std::cerr << "petroscope: error: " << result.verdict << '\n';
+        throw ExitCode{1};
+    }
+}
+
+}  // namespace
+
+void add_fit_command(CLI::App& app, const std::string& minerals_dir) {
+    CLI::App* fit = app.add_subcommand("fit", "Fit a model to microscope photographs (docs/fitting.md)");
+    fit->require_subcommand(1);
+    auto options = std::make_shared<FitOptions>();
+    CLI::App* conoscope = fit->add_subcommand(
+        "conoscope",
+        "Fit the slab thickness, the figure's centre, scale and rotation and the camera's response to a photo of an\n"
+        "interference figure (PNG, JPEG or TIFF, 8 or 16 bit). Writes model.png, side_by_side.png (photo | model |\n"
+        "residual x4 around grey), residual.tiff and report.json into the -o folder.");
+    conoscope->add_option("--photo", options->photo, "The photograph")->required();
+    conoscope->add_option("--mineral", options->mineral, "Mineral name or alias")->capture_default_str();
+    conoscope->add_option("--cut", options->cut, "optic-axis | acute-bisectrix | obtuse-bisectrix | optic-normal (default by optical class)");
+    conoscope->add_option("--tilt-deg", options->tilt_deg, "Starting (or fixed) tilt of the cut direction, degrees");
+    conoscope->add_option("--azimuth-deg", options->azimuth_deg, "Starting (or fixed) azimuth of the tilt, degrees from E toward N");
+    conoscope->add_option("--thickness", options->thickness, "Starting thickness with unit; searches thickness/3 … 3·thickness")->type_name(length_type);
+    conoscope->add_option("--thickness-range", options->thickness_range, "The global search range, MIN:MAX with units (default 5um:5mm)");
+    conoscope->add_option("--free", options->free, "Parameters to fit, comma-separated groups: thickness, center, scale, rotation, tilt,\n"
+                                                   "white-balance, black, gamma, blur")->capture_default_str();
+    conoscope->add_option("--fix", options->fixed, "NAME=VALUE: hold a parameter (names as in report.json, e.g. field_radius_px=250)");
+    conoscope->add_option("--na", options->na, "Numerical aperture of the objective")->capture_default_str();
+    conoscope->add_option("--polarizer-deg", options->polarizer_deg, "Polarizer direction in the lab")->capture_default_str();
+    conoscope->add_option("--analyzer-deg", options->analyzer_deg, "Analyzer direction in the lab")->capture_default_str();
+    conoscope->add_option("--surround-n", options->surround_n, "Index of the medium around the slab")->capture_default_str();
+    conoscope->add_option("--candidates", options->candidates, "Thickness minima refined by Ceres")->capture_default_str()->check(CLI::Range(1, 20));
+    add_light_options(conoscope, options->light);
+    conoscope->add_option("-o,--output", options->output_dir, "Folder for the results (must exist)")->required();
+    conoscope->add_flag("--json", options->json, "Print the report as JSON instead of the summary");
+    conoscope->callback([options, &minerals_dir] { run_fit_conoscope(*options, minerals_dir); });
+}
+
+}  // namespace petroscope::cli
