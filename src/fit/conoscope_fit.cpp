@@ -317,20 +317,23 @@ void uncertainties(ceres::Problem& problem, const PhotoCost& cost, const PhotoLe
         fitted.identifiable = !unidentified[k] && std::isfinite(sigma) && sigma <= limit;
         if (fitted.identifiable) fitted.sigma = sigma;
     }
-    // Pairs the photo cannot tell apart (|correlation| > 0.999): neither is a measurement.
+    // Pairs the photo cannot tell apart (|correlation| > 0.99995, a degeneracy): neither is a measurement.
+    // Above 0.999 the pair is only weakly separated: a warning, the 1σ says how weakly.
     for (int a = 0; a < p; ++a) {
         for (int b = 0; b < a; ++b) {
             const auto ka = static_cast<std::size_t>(free_indices[a]), kb = static_cast<std::size_t>(free_indices[b]);
             const double denominator = std::sqrt(block[ka * kPhotoParameterCount + ka] * block[kb * kPhotoParameterCount + kb]);
             if (!(denominator > 0.0)) continue;
             const double correlation = block[ka * kPhotoParameterCount + kb] / denominator;
-            if (std::abs(correlation) > 0.999) {
-                result.warnings.push_back(std::string(kNames[kb]) + " and " + std::string(kNames[ka]) + " are correlated " +
-                                          significant(correlation, 4) + ": the photo determines only a combination of them");
-                for (const std::size_t k : {ka, kb}) {
-                    result.parameters[k].identifiable = false;
-                    result.parameters[k].sigma.reset();
-                }
+            if (std::abs(correlation) <= 0.999) continue;
+            const bool degenerate = std::abs(correlation) > 0.99995;
+            result.warnings.push_back(std::string(kNames[kb]) + " and " + std::string(kNames[ka]) + " are correlated " +
+                                      significant(correlation, 6) +
+                                      (degenerate ? ": the photo determines only a combination of them" : ": the photo separates them only weakly"));
+            if (!degenerate) continue;
+            for (const std::size_t k : {ka, kb}) {
+                result.parameters[k].identifiable = false;
+                result.parameters[k].sigma.reset();
             }
         }
     }

@@ -1,0 +1,49 @@
+// Fitting a 512² white-light photo of a conoscopic figure with every nuisance parameter free (thickness,
+// centre, scale, rotation, white balance, black level, gamma, blur): the photo is synthesised once
+// (tests/fit/synthetic_photo.hpp: muscovite 300 µm, centre and scale off, camera turned, JPEG 85).
+#include "synthetic_photo.hpp"
+
+#include <benchmark/benchmark.h>
+
+#include <cstdio>
+
+namespace {
+
+using namespace petroscope;
+
+void FitConoscopePhoto512(benchmark::State& state) {
+    const Mineral& mineral = testing::fit_minerals().find("muscovite");
+    const testing::PhotoLight light = testing::white_light();
+    const ConoscopePhotoModel model = testing::photo_model(mineral, Cut::acute_bisectrix, light);
+    testing::PhotoTruth truth;
+    truth.thickness_um = 300.0;
+    truth.center_dx_px = 14;
+    truth.center_dy_px = -9;
+    truth.radius_scale = 0.94;
+    truth.rotation_deg = 6.0;
+    truth.gains = {1.1, 0.92, 1.05};
+    truth.gamma = 2.1;
+    const int size_px = 512;
+    const Image photo = testing::synthesize_photo(model, light, truth, size_px, 3);
+    ConoscopeFitOptions options;
+    options.initial = default_photo_parameters(size_px, size_px);
+    at(options.initial, PhotoParameter::thickness_um) = 150.0;  // off by a factor of 2
+    options.thickness_min_um = 50.0;
+    options.thickness_max_um = 450.0;
+    options.free.fill(true);
+    options.free[static_cast<std::size_t>(PhotoParameter::tilt_deg)] = false;
+    options.free[static_cast<std::size_t>(PhotoParameter::azimuth_deg)] = false;
+    double thickness = 0.0;
+    for (auto _ : state) {
+        const ConoscopeFitResult result = fit_conoscope_photo(photo, model, options);
+        thickness = at(result.values, PhotoParameter::thickness_um);
+        std::fprintf(stderr, "fitted %.4f um (truth 300), acceptable %d, R2 %.4f\n", thickness, int(result.acceptable), result.explained_variance);
+        benchmark::DoNotOptimize(thickness);
+    }
+    state.counters["thickness_um"] = thickness;
+}
+BENCHMARK(FitConoscopePhoto512)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();
