@@ -15,7 +15,6 @@
 #include "petroscope/spectral/color.hpp"
 
 #include <chrono>
-#include <cstdio>
 #include <cmath>
 #include <iostream>
 #include <map>
@@ -110,11 +109,7 @@ nlohmann::json report_json(const ConoscopeFitResult& result, const FitOptions& o
             {"sigma_meaning", "1 sigma from the Ceres covariance with a cluster-robust (sandwich) correction over blocks of the field"}};
 }
 
-std::string shown(double value) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.6g", value);
-    return text;
-}
+std::string shown(double value) { return format_significant(value, 6); }
 
 // The camera values of `values` written so that the PNG's codes equal them.
 Image camera_values_for_png(const Image& values) {

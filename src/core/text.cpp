@@ -6,6 +6,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 
 namespace petroscope {
 
@@ -74,6 +75,12 @@ std::optional<double> parse_double(std::string_view text) {
         return std::nullopt;
     }
     return value;
+}
+
+std::string format_significant(double value, int digits) {
+    char text[40];
+    std::snprintf(text, sizeof text, "%.*g", digits, value);
+    return text;
 }
 
 std::string format_number(double value) {

@@ -10,10 +10,10 @@
 #include <ceres/ceres.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <map>
 #include <cmath>
 #include <memory>
+#include <numbers>
 #include <numeric>
 
 namespace petroscope {
@@ -31,13 +31,6 @@ constexpr std::size_t index_of(PhotoParameter p) { return static_cast<std::size_
 // A 1σ beyond these says the photo does not determine the parameter (in its own unit; thickness relative).
 constexpr std::array<double, kPhotoParameterCount> kUnidentifiedSigma{0.2, 0.0, 0.0, 0.0, 20.0, 20.0, 45.0,
                                                                       0.5, 0.5, 0.5, 0.2,    1.0,  25.0};
-
-/// `value` with `digits` significant digits, for messages.
-std::string significant(double value, int digits) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.*g", digits, value);
-    return text;
-}
 
 /// The photo as three channels of camera values; InputError for what cannot be fitted.
 Image colour_photo(const Image& photo, bool white_light) {
@@ -94,7 +87,7 @@ double field_edge_radius(const Image& photo, const Eigen::Vector2d& centre, doub
     const double threshold = 0.2 * inner_means[inner_means.size() / 2];
     for (int bin = inner; bin + 5 < bins; ++bin) {
         // A ring mostly outside the image says nothing.
-        if (count[bin] < 0.3 * 2.0 * 3.14159 * (bin + 0.5)) break;
+        if (count[bin] < 0.3 * 2.0 * std::numbers::pi * (bin + 0.5)) break;
         bool dark = true;
         for (int k = 0; k < 5 && dark; ++k) dark = mean(bin + k) < threshold;
         if (dark) return bin;
@@ -328,7 +321,7 @@ void uncertainties(ceres::Problem& problem, const PhotoCost& cost, const PhotoLe
             if (std::abs(correlation) <= 0.999) continue;
             const bool degenerate = std::abs(correlation) > 0.99995;
             result.warnings.push_back(std::string(kNames[kb]) + " and " + std::string(kNames[ka]) + " are correlated " +
-                                      significant(correlation, 6) +
+                                      format_significant(correlation, 6) +
                                       (degenerate ? ": the photo determines only a combination of them" : ": the photo separates them only weakly"));
             if (!degenerate) continue;
             for (const std::size_t k : {ka, kb}) {
@@ -386,7 +379,7 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
     // Three levels: the thickness search, a blurred refinement that finds the geometry, the full photo;
     // each samples the field on a lattice of about this many pixels.
     const auto stride = [&](double samples) {
-        return std::max(1, static_cast<int>(std::lround(std::sqrt(3.14159 * sample_radius * sample_radius / samples))));
+        return std::max(1, static_cast<int>(std::lround(std::sqrt(std::numbers::pi * sample_radius * sample_radius / samples))));
     };
     const auto level = [&](int lattice_stride, double extra_blur) {
         return std::make_unique<PhotoLevel>(model, detail::sample_lattice(centre, sample_radius, lattice_stride, photo.width, photo.height),
@@ -445,11 +438,11 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
     // figure at all, leaves it unexplained).
     constexpr double kMinimumExplained = 0.5;
     result.acceptable = std::isfinite(statistics.explained_variance) && statistics.explained_variance >= kMinimumExplained;
-    result.verdict = result.acceptable ? "the model explains " + significant(100.0 * statistics.explained_variance, 3) +
-                                             "% of the photo's variance (rms residual " + significant(statistics.rms, 3) + ")"
+    result.verdict = result.acceptable ? "the model explains " + format_significant(100.0 * statistics.explained_variance, 3) +
+                                             "% of the photo's variance (rms residual " + format_significant(statistics.rms, 3) + ")"
                                        : "no acceptable fit: the best model explains only " +
-                                             significant(100.0 * statistics.explained_variance, 3) + "% of the photo's variance (cost " +
-                                             significant(best_cost, 4) + " per residual, rms residual " + significant(statistics.rms, 3) + ")";
+                                             format_significant(100.0 * statistics.explained_variance, 3) + "% of the photo's variance (cost " +
+                                             format_significant(best_cost, 4) + " per residual, rms residual " + format_significant(statistics.rms, 3) + ")";
     if (progress) progress(1.0);
     return result;
 }
@@ -464,14 +457,11 @@ Image render_conoscope_photo(const ConoscopePhotoModel& model, const PhotoParame
     evaluator.phase_derivatives(terms, phase);
     detail::LinearSamples linear;
     evaluator.linear(terms, phase, at(values, PhotoParameter::thickness_um), at(values, PhotoParameter::blur_variance_px2), false, linear);
+    const std::vector<Eigen::Vector3d> camera = detail::camera_values(linear.rgb, values);
     Image image(width_px, height_px, 3);
-    for (std::size_t k = 0; k < linear.rgb.size(); ++k) {
+    for (std::size_t k = 0; k < camera.size(); ++k) {
         const Eigen::Vector2d& pixel = evaluator.lattice().pixels[k];
-        for (int c = 0; c < 3; ++c) {
-            const double value = detail::camera_value(linear.rgb[k][c], values[index_of(PhotoParameter::gain_r) + static_cast<std::size_t>(c)],
-                                                      at(values, PhotoParameter::black_level), at(values, PhotoParameter::gamma)).value;
-            image.at(static_cast<int>(pixel.x()), static_cast<int>(pixel.y()), c) = static_cast<float>(value);
-        }
+        for (int c = 0; c < 3; ++c) image.at(static_cast<int>(pixel.x()), static_cast<int>(pixel.y()), c) = static_cast<float>(camera[k][c]);
     }
     return image;
 }

@@ -37,7 +37,6 @@ PhotoLevel::PhotoLevel(const ConoscopePhotoModel& model, SampleLattice lattice, 
         blurred = gaussian_blur(blurred, extra_blur);
         for (float& value : blurred.pixels) value = static_cast<float>(std::pow(value, 1.0 / gamma));
     }
-    const Image& original = photo;
     for (const Eigen::Vector2d& pixel : evaluator.lattice().pixels) {
         const int x = static_cast<int>(pixel.x()), y = static_cast<int>(pixel.y());
         Eigen::Vector3d value;
@@ -46,7 +45,7 @@ PhotoLevel::PhotoLevel(const ConoscopePhotoModel& model, SampleLattice lattice, 
             const int channel = std::min(c, photo.channels - 1);
             value[c] = blurred.at(x, y, channel);
             // Saturation is judged on the photo itself: blurring would hide clipped pixels.
-            saturated = saturated || original.at(x, y, channel) >= saturated_level;
+            saturated = saturated || photo.at(x, y, channel) >= saturated_level;
         }
         observed.push_back(value);
         usable.push_back(saturated ? 0 : 1);
@@ -77,13 +76,7 @@ void PhotoCost::linear_at(const PhotoParameters& values, bool derivatives, Linea
 std::vector<Eigen::Vector3d> PhotoCost::model_values(const PhotoParameters& values) const {
     LinearSamples linear;
     linear_at(values, false, linear);
-    std::vector<Eigen::Vector3d> result(linear.rgb.size());
-    for (std::size_t k = 0; k < result.size(); ++k) {
-        for (int c = 0; c < 3; ++c) {
-            result[k][c] = camera_value(linear.rgb[k][c], values[kGainR + c], values[kBlack], values[kGamma]).value;
-        }
-    }
-    return result;
+    return camera_values(linear.rgb, values);
 }
 
 bool PhotoCost::Evaluate(double const* const* parameters, double* residuals, double** jacobians) const {
@@ -121,13 +114,14 @@ bool PhotoCost::Evaluate(double const* const* parameters, double* residuals, dou
             for (std::size_t k = 0; k < samples; ++k) d_xi[axis][k] = (moved.rgb[k] - base.rgb[k]) / kXiStep;
         }
         for (int j = 0; j < 4; ++j) {
-            if (!free_[kCenterX + j]) continue;
-            d_geometry[j].resize(samples);
-            const double na = level_.evaluator.numerical_aperture();
-            for (std::size_t k = 0; k < samples; ++k) {
-                const Eigen::Vector2d xi = pixel_direction(values, na, level_.evaluator.lattice().pixels[k]);
-                const Eigen::Vector2d dxi = direction_derivatives(values, na, xi)[j];
-                d_geometry[j][k] = d_xi[0][k] * dxi.x() + d_xi[1][k] * dxi.y();
+            if (free_[kCenterX + j]) d_geometry[j].resize(samples);
+        }
+        const double na = level_.evaluator.numerical_aperture();
+        for (std::size_t k = 0; k < samples && any_direction; ++k) {
+            const Eigen::Vector2d xi = pixel_direction(values, na, level_.evaluator.lattice().pixels[k]);
+            const std::array<Eigen::Vector2d, 4> dxi = direction_derivatives(values, na, xi);
+            for (int j = 0; j < 4; ++j) {
+                if (!d_geometry[j].empty()) d_geometry[j][k] = d_xi[0][k] * dxi[j].x() + d_xi[1][k] * dxi[j].y();
             }
         }
         for (const int j : {kTilt, kAzimuth}) {

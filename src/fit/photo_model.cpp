@@ -156,6 +156,18 @@ CameraValue camera_value(double linear, double gain, double black, double gamma)
     return {black + encoded, slope * gain, slope * linear, -encoded * std::log(exposed) / (gamma * gamma)};
 }
 
+std::vector<Eigen::Vector3d> camera_values(const std::vector<Eigen::Vector3d>& linear_rgb, const PhotoParameters& values) {
+    std::vector<Eigen::Vector3d> result(linear_rgb.size());
+    const std::size_t gain = static_cast<std::size_t>(PhotoParameter::gain_r);
+    for (std::size_t k = 0; k < result.size(); ++k) {
+        for (int c = 0; c < 3; ++c) {
+            result[k][c] = camera_value(linear_rgb[k][c], values[gain + static_cast<std::size_t>(c)], at(values, PhotoParameter::black_level),
+                                        at(values, PhotoParameter::gamma)).value;
+        }
+    }
+    return result;
+}
+
 Image gaussian_blur(const Image& image, double sigma_px) {
     if (!(sigma_px > 0.0)) return image;
     const int radius = static_cast<int>(std::ceil(3.0 * sigma_px));

@@ -75,6 +75,9 @@ struct CameraValue {
 };
 CameraValue camera_value(double linear, double gain, double black, double gamma);
 
+/// The camera values of linear sRGB samples for the camera parameters of `values`.
+std::vector<Eigen::Vector3d> camera_values(const std::vector<Eigen::Vector3d>& linear_rgb, const PhotoParameters& values);
+
 /// A Gaussian blur (σ in pixels, edges clamped) of every channel of `image`; σ ≤ 0 returns it as it is.
 Image gaussian_blur(const Image& image, double sigma_px);
 

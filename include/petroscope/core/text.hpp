@@ -24,6 +24,9 @@ std::optional<double> parse_double(std::string_view text);
 /// The shortest text that reads back as `value` ("0.85", "1e-300").
 std::string format_number(double value);
 
+/// `value` rounded to `digits` significant digits ("%.*g"), for reports meant to be read.
+std::string format_significant(double value, int digits);
+
 /// Levenshtein edit distance, for "did you mean" suggestions.
 std::size_t edit_distance(std::string_view a, std::string_view b);
 
