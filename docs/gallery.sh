@@ -59,7 +59,7 @@ figure() {
 md "# Gallery" "" \
    "Every image on this page was made by [gallery.sh](gallery.sh) with the command printed under it; run" \
    "\`docs/gallery.sh build/petroscope\` from the repository root to make them all again (this page" \
-   "included; about 20 s on two cores). Unless a caption says otherwise the light is white (CIE D65, 380–780 nm" \
+   "included; about 40 s on two cores). Unless a caption says otherwise the light is white (CIE D65, 380–780 nm" \
    "every 5 nm), the polarizer is E–W and the analyzer N–S (crossed); in the conoscope figures the" \
    "objective's NA is 0.85 and the slab lies in Canada balsam (n = 1.54). Frames and angle senses are in" \
    "[conventions.md](conventions.md); the physics is summarised in [theory.md](theory.md) and every option" \
@@ -160,6 +160,26 @@ md "Calcite, 30 µm, optic axis tilted 20° and turned from 0° to 330° by 30°
    "![sweep animation](gallery/sweep-calcite-azimuth.gif)" "" '```' "$(cat "$sweep_dir/csv")" '```' "" \
    '```sh' "petroscope ${sweep_command[*]} -o sweep/" '```' ""
 rm -rf "$sweep_dir"
+
+# ---------------------------------------------------------------------------------------------------------
+md "## Fitting a photo: thickness from an off-centre figure" "" \
+   "The photo below stands in for a camera image: calcite, 40 µm, optic axis tilted 12° toward azimuth 30°." \
+   "\`petroscope fit conoscope\` is told only the mineral and a start twice too thin (20 µm, tilt 10°," \
+   "azimuth 20°); it scans the thickness over retardation orders, then fits thickness, centre, scale," \
+   "rotation, tilt, white balance, black level, gamma and blur ([fitting.md](fitting.md)). Photo | best fit |" \
+   "residual (×4 around grey); under it the summary the command prints." ""
+render fit-calcite-photo conoscope --mineral calcite --thickness 40um --tilt-deg 12 --azimuth-deg 30 --size $size
+photo_command=$command
+fit_dir=$(mktemp -d)
+fit_command=(fit conoscope --photo "$out/fit-calcite-photo.png" --mineral calcite --thickness 20um --tilt-deg 10
+             --azimuth-deg 20 --free thickness,center,scale,rotation,tilt,white-balance,black,gamma,blur)
+echo "gallery.sh: fit" >&2
+"$binary" "${fit_command[@]}" -o "$fit_dir" >"$fit_dir/summary.txt" 2>&1
+cp "$fit_dir/side_by_side.png" "$out/fit-calcite-side-by-side.png"
+md "![photo, model and residual](gallery/fit-calcite-side-by-side.png)" "" \
+   '```' "$(grep -v '^wrote' "$fit_dir/summary.txt")" '```' "" \
+   '```sh' "$photo_command" "petroscope ${fit_command[*]} -o fit/" '```' ""
+rm -rf "$fit_dir"
 
 chmod 644 "$page_tmp"
 mv "$page_tmp" "$page"

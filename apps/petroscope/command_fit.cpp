@@ -222,7 +222,7 @@ void run_fit_conoscope(const FitOptions& options, const std::string& minerals_di
             const FittedValue& v = result.parameters[static_cast<std::size_t>(j)];
             std::cout << "  " << photo_parameter_name(static_cast<PhotoParameter>(j)) << " = ";
             if (!v.identifiable) std::cout << "not determined (" << shown(v.value) << " at the minimum)";
-            else std::cout << shown(v.value) << (v.sigma ? " +- " + shown(*v.sigma) : std::string(v.free ? "" : " (fixed)"));
+            else std::cout << (v.sigma ? format_with_uncertainty(v.value, *v.sigma) : shown(v.value) + (v.free ? "" : " (fixed)"));
             std::cout << '\n';
         }
         std::cout << "  thickness minima (coarse cost per residual):";

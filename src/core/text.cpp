@@ -83,6 +83,16 @@ std::string format_significant(double value, int digits) {
     return text;
 }
 
+std::string format_with_uncertainty(double value, double sigma) {
+    if (!(std::isfinite(sigma) && sigma > 0.0) || !std::isfinite(value))
+        return format_significant(value, 6) + " +- " + format_significant(sigma, 6);
+    // Decimal places that keep two significant digits of sigma; none when sigma >= 10.
+    const int decimals = std::max(0, 1 - static_cast<int>(std::floor(std::log10(sigma))));
+    char text[80];
+    std::snprintf(text, sizeof text, "%.*f +- %.*f", decimals, value, decimals, sigma);
+    return text;
+}
+
 std::string format_number(double value) {
     char buffer[32];
     const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);

@@ -33,25 +33,42 @@ std::string image_format_name(ImageFormat format) {
 
 namespace {
 
-// 8-bit sRGB code of a linear value, round(255·encode_srgb(clamp(v))), by a search among the 255 code
-// boundaries: the same codes as evaluating the curve, at a fraction of the cost (a frame has 786k values).
-std::uint8_t srgb_code(float linear) {
-    static const std::vector<double> boundaries = [] {
+// 8-bit sRGB code of a linear value, round(255·encode_srgb(clamp(v))), as the number of code boundaries
+// at or below it: the same codes as evaluating the curve, at a fraction of the cost (a frame has 786k
+// values). A table of the code at the start of each of 4096 equal bins leaves at most a few boundaries
+// to step over.
+struct SrgbCodeTable {
+    static constexpr int kBins = 4096;
+    std::vector<double> boundaries;  // the smallest value with code 1, 2, … 255
+    std::vector<std::uint8_t> first_code;  // code of k/kBins, k = 0 … kBins
+
+    SrgbCodeTable() {
         const auto code_of = [](double value) { return std::lround(255.0 * encode_srgb(value)); };
-        std::vector<double> result;
         for (long code = 1; code <= 255; ++code) {
-            // The smallest value with this code or above, bisected to adjacent doubles (the curve rises).
+            // Bisected to adjacent doubles (the curve rises).
             double low = 0.0, high = 1.0;
             while (std::nextafter(low, high) < high) {
                 const double middle = 0.5 * (low + high);
                 (code_of(middle) >= code ? high : low) = middle;
             }
-            result.push_back(high);
+            boundaries.push_back(high);
         }
-        return result;
-    }();
-    const double clamped = std::clamp(static_cast<double>(linear), 0.0, 1.0);
-    return static_cast<std::uint8_t>(std::upper_bound(boundaries.begin(), boundaries.end(), clamped) - boundaries.begin());
+        for (int k = 0; k <= kBins; ++k) first_code.push_back(count_up(0, static_cast<double>(k) / kBins));
+    }
+
+    std::uint8_t count_up(int code, double value) const {
+        while (code < 255 && boundaries[static_cast<std::size_t>(code)] <= value) ++code;
+        return static_cast<std::uint8_t>(code);
+    }
+};
+
+std::uint8_t srgb_code(float linear) {
+    static const SrgbCodeTable table;
+    // Clamped to [0, 1], NaN to 0 (a NaN must not reach the integer conversion below).
+    const double clamped = linear > 0.0f ? std::min(static_cast<double>(linear), 1.0) : 0.0;
+    // clamped·kBins is exact (a power of two), so the bin starts at or below the value.
+    const int bin = static_cast<int>(clamped * SrgbCodeTable::kBins);
+    return table.count_up(table.first_code[static_cast<std::size_t>(bin)], clamped);
 }
 
 }  // namespace

@@ -24,7 +24,8 @@ struct SheetValue {
     double g, dg_dq, dg_dxi_x, dg_dxi_y;
 };
 
-inline SheetValue sheet_value(double a, double b, double sigma, double xi_x, double xi_y, double b1x, double b1y, double b1z,
+// Always inlined: a call inside the sample loops would stop their vectorisation.
+[[gnu::always_inline]] inline SheetValue sheet_value(double a, double b, double sigma, double xi_x, double xi_y, double b1x, double b1y, double b1z,
                               double b2x, double b2y, double b2z, double q) {
     const double n2 = xi_x * xi_x + xi_y * xi_y + q * q;
     const double nb1 = xi_x * b1x + xi_y * b1y + q * b1z;
@@ -92,19 +93,69 @@ void newton_starts(const SampleCrystal& crystal, KernelScratch& scratch, bool wa
     }
 }
 
-// The forward mode of one side and sheet at every sample: q (two Newton steps from the start, or the
-// closed form for a uniaxial crystal), ∂q/∂ξ, and ψ in the side's plane-of-incidence frame.
+// The forward root q of one side and sheet at every sample (the closed form for a uniaxial crystal, two
+// Newton steps from the start for a biaxial one) and ∂q/∂ξ; sheet_failed marks roots that did not
+// converge. Roots and vibrations are separate loops: fused into one, bench_conoscope's WhiteLight/512
+// figures took 199 ms (biaxial) and 121 ms (uniaxial) instead of 168 and 93 ms.
 template <bool Uniaxial, int Sheet, int Side>
-void solve_modes(const SampleCrystal& crystal, KernelScratch& scratch) {
+void solve_roots(const SampleCrystal& crystal, KernelScratch& scratch) {
     constexpr double sigma = Sheet == 0 ? 1.0 : -1.0;
     constexpr double direction = Side == 0 ? 1.0 : -1.0;
     const CrystalArrays c(crystal);
     const double orientation = crystal.uniaxial_orientation;
     const double *xi_x0 = scratch.xi_x.data(), *xi_y0 = scratch.xi_y.data();
-    const double *rho_x0 = scratch.rho_x.data(), *rho_y0 = scratch.rho_y.data(), *reversal = scratch.reversal.data();
     const double* start = scratch.q_start[Side][Sheet].data();
     double *q_out = scratch.q[Side][Sheet].data(), *dq_x = scratch.dq_dxi_x[Side][Sheet].data();
     double* dq_y = scratch.dq_dxi_y[Side][Sheet].data();
+    std::int64_t* unconverged = scratch.sheet_failed[Side][Sheet].data();
+    const int count = static_cast<int>(crystal.padded_size());
+#pragma omp simd
+    for (int i = 0; i < count; ++i) {
+        const double xi_x = direction * xi_x0[i], xi_y = direction * xi_y0[i];
+        double q = 0.0;
+        bool converged = false;
+        if constexpr (Uniaxial) {
+            // Closed form: the quadratic of optics/slab.cpp (forward_quadratic_root).
+            const double xi2 = xi_x * xi_x + xi_y * xi_y;
+            const double u1 = xi_x * c.b1x[i] + xi_y * c.b1y[i];
+            const double level = c.a[i] + sigma * c.b[i];
+            const double cross = c.b[i] * (orientation - sigma);
+            const double alpha = level + cross * c.b1z[i] * c.b1z[i];
+            const double beta = 2.0 * cross * u1 * c.b1z[i];
+            const double gamma = level * xi2 + cross * u1 * u1 - 1.0;
+            const double t = -0.5 * (beta + std::copysign(std::sqrt(std::max(beta * beta - 4.0 * alpha * gamma, 0.0)), beta));
+            const double other_root = t != 0.0 ? gamma / t : -t / alpha;
+            q = std::max(t / alpha, other_root);
+            // No real root (g(0) ≥ 0): evanescent; the reference path reports it.
+            converged = gamma < 0.0;
+        } else {
+            q = start[i];
+            const SheetValue first = sheet_value(c.a[i], c.b[i], sigma, xi_x, xi_y, c.b1x[i], c.b1y[i], c.b1z[i], c.b2x[i],
+                                                 c.b2y[i], c.b2z[i], q);
+            q -= first.g / first.dg_dq;
+            const SheetValue second = sheet_value(c.a[i], c.b[i], sigma, xi_x, xi_y, c.b1x[i], c.b1y[i], c.b1z[i], c.b2x[i],
+                                                  c.b2y[i], c.b2z[i], q);
+            const double last_step = second.g / second.dg_dq;
+            q -= last_step;
+            // Implicit function theorem at the root: ∂q/∂ξ = −(∂g/∂ξ)/(∂g/∂q), ξ of this side.
+            dq_x[i] = -second.dg_dxi_x / second.dg_dq;
+            dq_y[i] = -second.dg_dxi_y / second.dg_dq;
+            converged = std::abs(last_step) <= kConvergedStep * q;
+        }
+        q_out[i] = q;
+        unconverged[i] = static_cast<std::int64_t>(!(converged && q > 0.0));
+    }
+}
+
+// The vibration and field vectors ψ of one side and sheet from its roots, in the side's plane-of-incidence
+// frame; sheet_failed also marks samples near a binormal or with a non-finite root.
+template <int Sheet, int Side>
+void solve_vibrations(const SampleCrystal& crystal, KernelScratch& scratch) {
+    constexpr double direction = Side == 0 ? 1.0 : -1.0;
+    const CrystalArrays c(crystal);
+    const double *xi_x0 = scratch.xi_x.data(), *xi_y0 = scratch.xi_y.data();
+    const double *rho_x0 = scratch.rho_x.data(), *rho_y0 = scratch.rho_y.data(), *reversal = scratch.reversal.data();
+    const double* q_in = scratch.q[Side][Sheet].data();
     auto& psi = scratch.psi[Side][Sheet];
     double *psi0 = psi[0].data(), *psi1 = psi[1].data(), *psi2 = psi[2].data(), *psi3 = psi[3].data();
     std::int64_t* failed = scratch.sheet_failed[Side][Sheet].data();
@@ -116,34 +167,7 @@ void solve_modes(const SampleCrystal& crystal, KernelScratch& scratch) {
         const double rho_x = rho_sign * rho_x0[i], rho_y = rho_sign * rho_y0[i];
         const double s_x = -rho_y, s_y = rho_x;  // ŝ = ẑ × ρ̂
         const double xi2 = xi_x * xi_x + xi_y * xi_y;
-        double q = 0.0;
-        double last_step = 0.0;
-        if constexpr (Uniaxial) {
-            // Closed form: the quadratic of optics/slab.cpp (forward_quadratic_root).
-            const double u1 = xi_x * c.b1x[i] + xi_y * c.b1y[i];
-            const double level = c.a[i] + sigma * c.b[i];
-            const double cross = c.b[i] * (orientation - sigma);
-            const double alpha = level + cross * c.b1z[i] * c.b1z[i];
-            const double beta = 2.0 * cross * u1 * c.b1z[i];
-            const double gamma = level * xi2 + cross * u1 * u1 - 1.0;
-            const double t = -0.5 * (beta + std::copysign(std::sqrt(std::max(beta * beta - 4.0 * alpha * gamma, 0.0)), beta));
-            const double other_root = t != 0.0 ? gamma / t : -t / alpha;
-            q = std::max(t / alpha, other_root);
-            // No real root (g(0) ≥ 0): evanescent; the reference path reports it.
-            last_step = gamma >= 0.0 ? 1.0 : 0.0;
-        } else {
-            q = start[i];
-            const SheetValue first = sheet_value(c.a[i], c.b[i], sigma, xi_x, xi_y, c.b1x[i], c.b1y[i], c.b1z[i], c.b2x[i],
-                                                 c.b2y[i], c.b2z[i], q);
-            q -= first.g / first.dg_dq;
-            const SheetValue second = sheet_value(c.a[i], c.b[i], sigma, xi_x, xi_y, c.b1x[i], c.b1y[i], c.b1z[i], c.b2x[i],
-                                                  c.b2y[i], c.b2z[i], q);
-            last_step = second.g / second.dg_dq;
-            q -= last_step;
-            // Implicit function theorem at the root: ∂q/∂ξ = −(∂g/∂ξ)/(∂g/∂q), ξ of this side.
-            dq_x[i] = -second.dg_dxi_x / second.dg_dq;
-            dq_y[i] = -second.dg_dxi_y / second.dg_dq;
-        }
+        const double q = q_in[i];
         // Vibration direction (physics notes §2) from unnormalised projections of the binormals on the
         // plane ⟂ N, vᵢ = |N|²bᵢ − (N·bᵢ)N: S = |v₂|v₁ + |v₁|v₂ ∥ p̂₁ + p̂₂ (slow) and
         // T = |v₂|v₁ − |v₁|v₂ ∥ p̂₁ − p̂₂ (fast), orthogonal whatever rounding did to the vᵢ because the
@@ -171,15 +195,13 @@ void solve_modes(const SampleCrystal& crystal, KernelScratch& scratch) {
         const double ey = c.eta_xy[i] * dx + c.eta_yy[i] * dy + c.eta_yz[i] * dz;
         const double ez = c.eta_xz[i] * dx + c.eta_yz[i] * dy + c.eta_zz[i] * dz;
         const double hx = ny * ez - nz * ey, hy = nz * ex - nx * ez;
-        q_out[i] = q;
         psi0[i] = ex * rho_x + ey * rho_y;
         psi1[i] = hx * s_x + hy * s_y;
         psi2[i] = ex * s_x + ey * s_y;
         psi3[i] = -(hx * rho_x + hy * rho_y);
         // |vᵢ| = |N|²·sin(angle to bᵢ).
         const bool near_binormal = std::min(r1, r2) <= kNearBinormal * n2;
-        const bool converged = std::abs(last_step) <= kConvergedStep * q && q > 0.0;
-        failed[i] = static_cast<std::int64_t>(!converged || near_binormal || !std::isfinite(q));
+        failed[i] |= static_cast<std::int64_t>(near_binormal || !std::isfinite(q));
     }
 }
 
@@ -266,8 +288,10 @@ void solve_side(const SampleCrystal& crystal, KernelScratch& scratch, bool warm)
         newton_starts<0, Side>(crystal, scratch, warm);
         newton_starts<1, Side>(crystal, scratch, warm);
     }
-    solve_modes<Uniaxial, 0, Side>(crystal, scratch);
-    solve_modes<Uniaxial, 1, Side>(crystal, scratch);
+    solve_roots<Uniaxial, 0, Side>(crystal, scratch);
+    solve_roots<Uniaxial, 1, Side>(crystal, scratch);
+    solve_vibrations<0, Side>(crystal, scratch);
+    solve_vibrations<1, Side>(crystal, scratch);
 }
 
 template <bool Terms>

@@ -100,6 +100,14 @@ TEST(EditDistance, IsSymmetric) {
     }
 }
 
+TEST(FormatWithUncertainty, RoundsSigmaToTwoDigitsAndValueToItsPlace) {
+    EXPECT_EQ(format_with_uncertainty(39.97401, 0.0479925), "39.974 +- 0.048");
+    EXPECT_EQ(format_with_uncertainty(299.9943, 0.18), "299.99 +- 0.18");
+    EXPECT_EQ(format_with_uncertainty(1.06440, 0.0048899), "1.0644 +- 0.0049");
+    EXPECT_EQ(format_with_uncertainty(1234.56, 12.3), "1235 +- 12");  // sigma >= 10: whole numbers
+    EXPECT_EQ(format_with_uncertainty(2.5, 0.0), "2.5 +- 0");           // no rounding rule without a sigma
+}
+
 TEST(LocatedError, ReadsFileColonLineColonWhat) {
     const InputError error = located_error("minerals/quartz.txt", 12, "expected 'key: value'");
     EXPECT_STREQ(error.what(), "minerals/quartz.txt:12: expected 'key: value'");

@@ -27,6 +27,11 @@ std::string format_number(double value);
 /// `value` rounded to `digits` significant digits ("%.*g"), for reports meant to be read.
 std::string format_significant(double value, int digits);
 
+/// "value +- sigma" with sigma rounded to two significant digits and value to the same decimal place
+/// (the usual rule for a measurement and its uncertainty, e.g. "39.974 +- 0.048"); a zero or non-finite
+/// sigma leaves the value at six significant digits.
+std::string format_with_uncertainty(double value, double sigma);
+
 /// Levenshtein edit distance, for "did you mean" suggestions.
 std::size_t edit_distance(std::string_view a, std::string_view b);
 
