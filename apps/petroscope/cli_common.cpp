@@ -1,5 +1,6 @@
 #include "cli_common.hpp"
 
+#include "petroscope/core/text.hpp"
 #include "petroscope/core/units.hpp"
 #include "petroscope/io/json_sidecar.hpp"
 
@@ -34,6 +35,14 @@ double positive_length_um(const std::string& option, const std::string& text) {
     const double value = with_option(option, [&] { return parse_length_um(text); });
     if (!(value > 0.0)) throw InputError(option + " '" + text + "': must be > 0");
     return value;
+}
+
+std::pair<double, double> length_range_um(const std::string& option, const std::string& text) {
+    const auto parts = split(text, ':');
+    if (parts.size() != 2) throw InputError(option + " '" + text + "': expected MIN:MAX with units, e.g. 10um:5mm");
+    const double low = positive_length_um(option, parts[0]), high = positive_length_um(option, parts[1]);
+    if (!(high > low)) throw InputError(option + " '" + text + "': the maximum must exceed the minimum");
+    return {low, high};
 }
 
 std::string joined_command_line(int argc, char** argv) {

@@ -53,6 +53,9 @@ auto with_option(const std::string& option, Parse parse) {
 /// A length option's value in µm, which must be > 0 ("--thickness '0um': must be > 0"); throws InputError.
 double positive_length_um(const std::string& option, const std::string& text);
 
+/// A range of lengths "MIN:MAX" with units (10um:5mm) in µm, 0 < MIN < MAX; throws InputError naming `option`.
+std::pair<double, double> length_range_um(const std::string& option, const std::string& text);
+
 /// The command line as one string, for sidecars.
 std::string joined_command_line(int argc, char** argv);
 
@@ -63,5 +66,6 @@ void add_section_command(CLI::App& app, const std::string& minerals_dir);
 void add_chart_command(CLI::App& app, const std::string& minerals_dir, const std::string& command_line);
 void add_sweep_command(CLI::App& app, const std::string& minerals_dir);
 void add_fit_command(CLI::App& app, const std::string& minerals_dir);
+void add_fit_orthoscope_command(CLI::App* fit, const std::string& minerals_dir);
 
 }  // namespace petroscope::cli

@@ -2,6 +2,7 @@
 // an interference figure. The method: docs/fitting.md.
 #include "cli_common.hpp"
 #include "cli_light.hpp"
+#include "fit_report.hpp"
 #include "frame_command.hpp"
 
 #include "petroscope/core/error.hpp"
@@ -48,14 +49,6 @@ struct FitOptions {
     LightOptions light;
 };
 
-std::pair<double, double> parse_thickness_range(const std::string& text) {
-    const auto parts = split(text, ':');
-    if (parts.size() != 2) throw InputError("--thickness-range '" + text + "': expected MIN:MAX with units, e.g. 10um:5mm");
-    const double low = positive_length_um("--thickness-range", parts[0]), high = positive_length_um("--thickness-range", parts[1]);
-    if (!(high > low)) throw InputError("--thickness-range '" + text + "': the maximum must exceed the minimum");
-    return {low, high};
-}
-
 PhotoParameter parameter_named(const std::string& option, const std::string& name) {
     for (int j = 0; j < kPhotoParameterCount; ++j) {
         if (photo_parameter_name(static_cast<PhotoParameter>(j)) == name) return static_cast<PhotoParameter>(j);
@@ -70,13 +63,9 @@ nlohmann::json report_json(const ConoscopeFitResult& result, const FitOptions& o
     nlohmann::json parameters = nlohmann::json::object();
     for (int j = 0; j < kPhotoParameterCount; ++j) {
         const FittedValue& value = result.parameters[static_cast<std::size_t>(j)];
-        parameters[std::string(photo_parameter_name(static_cast<PhotoParameter>(j)))] = {
-            {"value", value.identifiable ? nlohmann::json(value.value) : nlohmann::json(nullptr)},
-            {"value_at_minimum", value.value},
-            {"sigma", value.sigma ? nlohmann::json(*value.sigma) : nlohmann::json(nullptr)},
-            {"free", value.free},
-            {"identifiable", value.identifiable},
-            {"initial", fit_options.initial[static_cast<std::size_t>(j)]}};
+        nlohmann::json entry = fitted_value_json(value);
+        entry["initial"] = fit_options.initial[static_cast<std::size_t>(j)];
+        parameters[std::string(photo_parameter_name(static_cast<PhotoParameter>(j)))] = entry;
     }
     nlohmann::json candidates = nlohmann::json::array();
     for (const auto& candidate : result.candidates) {
@@ -159,7 +148,7 @@ void run_fit_conoscope(const FitOptions& options, const std::string& minerals_di
         fit.thickness_min_um = start / 3.0;
         fit.thickness_max_um = start * 3.0;
     }
-    if (!options.thickness_range.empty()) std::tie(fit.thickness_min_um, fit.thickness_max_um) = parse_thickness_range(options.thickness_range);
+    if (!options.thickness_range.empty()) std::tie(fit.thickness_min_um, fit.thickness_max_um) = length_range_um("--thickness-range", options.thickness_range);
     if (options.thickness.empty()) at(fit.initial, PhotoParameter::thickness_um) = std::sqrt(fit.thickness_min_um * fit.thickness_max_um);
     fit.free.fill(false);
     for (const std::string& group : split(options.free, ',')) {
@@ -214,27 +203,17 @@ void run_fit_conoscope(const FitOptions& options, const std::string& minerals_di
     write_json_file(report, report_path);
     pending.commit();
 
-    if (options.json) {
-        std::cout << report.dump(2) << '\n';
-    } else {
-        std::cout << (result.acceptable ? "fit: " : "fit failed: ") << result.verdict << '\n';
+    finish_fit(options.json, report, result.acceptable, result.verdict, [&] {
         for (int j = 0; j < kPhotoParameterCount; ++j) {
-            const FittedValue& v = result.parameters[static_cast<std::size_t>(j)];
-            std::cout << "  " << photo_parameter_name(static_cast<PhotoParameter>(j)) << " = ";
-            if (!v.identifiable) std::cout << "not determined (" << shown(v.value) << " at the minimum)";
-            else std::cout << (v.sigma ? format_with_uncertainty(v.value, *v.sigma) : shown(v.value) + (v.free ? "" : " (fixed)"));
-            std::cout << '\n';
+            std::cout << "  " << photo_parameter_name(static_cast<PhotoParameter>(j)) << " = "
+                      << fitted_value_text(result.parameters[static_cast<std::size_t>(j)]) << '\n';
         }
         std::cout << "  thickness minima (coarse cost per residual):";
         for (const auto& c : result.candidates) std::cout << ' ' << shown(c.thickness_um) << "um (" << shown(c.cost) << ")";
         std::cout << '\n';
         for (const auto& warning : result.warnings) std::cout << "warning: " << warning << '\n';
         std::cout << "wrote " << (folder / "report.json").string() << ", model.png, side_by_side.png, residual.tiff (" << shown(seconds) << " s)\n";
-    }
-    if (!result.acceptable) {
-        std::cerr << "petroscope: error: " << result.verdict << '\n';
-        throw ExitCode{1};
-    }
+    });
 }
 
 }  // namespace
@@ -264,9 +243,9 @@ void add_fit_command(CLI::App& app, const std::string& minerals_dir) {
     conoscope->add_option("--surround-n", options->surround_n, "Index of the medium around the slab")->capture_default_str();
     conoscope->add_option("--candidates", options->candidates, "Thickness minima refined by Ceres")->capture_default_str()->check(CLI::Range(1, 20));
     add_light_options(conoscope, options->light);
-    conoscope->add_option("-o,--output", options->output_dir, "Folder for the results (must exist)")->required();
-    conoscope->add_flag("--json", options->json, "Print the report as JSON instead of the summary");
+    add_fit_output_options(conoscope, options->output_dir, options->json);
     conoscope->callback([options, &minerals_dir] { run_fit_conoscope(*options, minerals_dir); });
+    add_fit_orthoscope_command(fit, minerals_dir);
 }
 
 }  // namespace petroscope::cli

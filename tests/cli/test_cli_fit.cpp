@@ -1,7 +1,10 @@
-// petroscope fit conoscope as a user runs it: a rendered figure fitted back, and bad photos refused.
+// petroscope fit conoscope and fit orthoscope as a user runs them: rendered photos fitted back, bad photos
+// and options refused.
 #include "support/cli_fixture.hpp"
 
 #include <nlohmann/json.hpp>
+
+#include <algorithm>
 
 namespace petroscope {
 namespace {
@@ -61,6 +64,83 @@ TEST_F(FitCli, PhotoOfSomethingElseHasNoAcceptableFit) {
     EXPECT_EQ(run.exit_code, 1) << run.out << run.err;
     EXPECT_NE(run.err.find("no acceptable fit"), std::string::npos) << run.err;
     EXPECT_NE(run.err.find("cost"), std::string::npos) << run.err;
+}
+
+// fit orthoscope: photos of a one-grain quartz section (random orientation, 30 µm) between crossed polars
+// at two stage angles and with the gypsum plate.
+class FitOrthoscopeCli : public testing::CliFixture {
+protected:
+    void SetUp() override {
+        testing::CliFixture::SetUp();
+        const testing::CommandResult made = petroscope("section random --minerals quartz --grains 1 --size 64 --pixel-size 10um --thickness 30um "
+                                                       "--seed 4 -o " + testing::quoted(scratch() / "grain"));
+        ASSERT_EQ(made.exit_code, 0) << made.err;
+        const std::string description = testing::read_text(scratch() / "grain" / "section.txt");
+        const auto euler = description.find("euler ", description.find("\ngrain 1:"));
+        ASSERT_NE(euler, std::string::npos);
+        euler_ = description.substr(euler + 6, description.find('\n', euler) - euler - 6);
+        std::replace(euler_.begin(), euler_.end(), ' ', ',');
+        for (const auto& [name, options] : std::vector<std::pair<std::string, std::string>>{
+                 {"xpl0.png", "--stage-deg 0"}, {"xpl30.png", "--stage-deg 30"}, {"gypsum0.png", "--stage-deg 0 --plate gypsum"}}) {
+            const testing::CommandResult run = petroscope("orthoscope --section " + testing::quoted(scratch() / "grain") + " " + options + " -o " +
+                                                          testing::quoted(scratch() / name));
+            ASSERT_EQ(run.exit_code, 0) << run.err;
+        }
+    }
+    std::string photos() const {
+        return "--photo " + testing::quoted(scratch() / "xpl0.png") + " --photo " + testing::quoted(scratch() / "xpl30.png") + " --photo " +
+               testing::quoted(scratch() / "gypsum0.png") + " --stage-deg 0,30,0 --plate none,none,gypsum";
+    }
+    std::string euler_;
+};
+
+TEST_F(FitOrthoscopeCli, KnownOrientationGivesTheThicknessWithReportAndSwatches) {
+    const testing::CommandResult run = petroscope("fit orthoscope " + photos() + " --mineral quartz --region 16,16,32,32 --euler-deg=" + euler_ + " -o " + testing::quoted(out()));
+    ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+    const nlohmann::json report = nlohmann::json::parse(testing::read_text(out() / "report.json"));
+    EXPECT_TRUE(report["acceptable"].get<bool>());
+    EXPECT_NEAR(report["thickness_um"]["value"].get<double>(), 30.0, 0.5);
+    EXPECT_GT(report["thickness_um"]["sigma"].get<double>(), 0.0);
+    EXPECT_EQ(report["photos"].size(), 3u);
+    EXPECT_TRUE(std::filesystem::exists(out() / "colours.png"));
+    EXPECT_NE(run.out.find("thickness_um = "), std::string::npos);
+}
+
+TEST_F(FitOrthoscopeCli, FreeOrientationReportsTheRetardationNotTheThickness) {
+    const testing::CommandResult run = petroscope("fit orthoscope " + photos() + " --mineral quartz --region 16,16,32,32 --orientation free --json -o " + testing::quoted(out()));
+    ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+    const nlohmann::json report = nlohmann::json::parse(run.out);
+    EXPECT_TRUE(report["thickness_um"]["value"].is_null());
+    EXPECT_FALSE(report["thickness_um"]["identifiable"].get<bool>());
+    EXPECT_TRUE(report["retardation_550nm"]["identifiable"].get<bool>());
+    EXPECT_LE(report["thickness_lower_bound_um"].get<double>(), 30.0 * 1.03);
+}
+
+TEST_F(FitOrthoscopeCli, BadPhotosAndOptionsAreRefused) {
+    const std::string tail = " --mineral quartz -o " + testing::quoted(out());
+    expect_rejected("fit orthoscope --photo " + testing::quoted(scratch() / "missing.png") + tail, {"--photo", "missing.png"});
+    expect_rejected("fit orthoscope " + photos() + " --stage-deg 0,30" + tail, {"--stage-deg", "one per photo"});
+    expect_rejected("fit orthoscope " + photos() + " --region 60,60,10,10" + tail, {"--region", "leaves"});
+    expect_rejected("fit orthoscope " + photos() + " --region 1,2,3" + tail, {"--region", "X,Y,WIDTH,HEIGHT"});
+    expect_rejected("fit orthoscope " + photos() + " --region 1,1,4,4 --mask " + testing::quoted(scratch() / "xpl0.png") + tail, {"--mask", "--region"});
+    expect_rejected("fit orthoscope " + photos() + " --wavelength 589nm" + tail, {"--wavelength", "white light"});
+    expect_rejected("fit orthoscope " + photos() + " --orientation sideways" + tail, {"--orientation", "max-birefringence"});
+    expect_rejected("fit orthoscope " + photos() + " --orientation known" + tail, {"--euler-deg"});
+    expect_rejected("fit orthoscope " + photos() + " --euler-deg 1,2" + tail, {"--euler-deg", "ALPHA,BETA,GAMMA"});
+    expect_rejected("fit orthoscope " + photos() + " --thickness-range 50um:10um" + tail, {"--thickness-range", "maximum"});
+    expect_rejected("fit orthoscope " + photos() + " --mineral quartz -o " + testing::quoted(scratch() / "xpl0.png"), {"-o", "not a folder"});
+    const testing::CommandResult grey = petroscope("orthoscope --section " + testing::quoted(scratch() / "grain") + " --wavelength 589nm -o " +
+                                                   testing::quoted(scratch() / "grey.png"));
+    ASSERT_EQ(grey.exit_code, 0) << grey.err;
+    expect_rejected("fit orthoscope --photo " + testing::quoted(scratch() / "grey.png") + tail, {"grey.png", "grayscale"});
+}
+
+// Photos of quartz fitted as calcite: no calcite grain shows these colours at any thickness in range.
+TEST_F(FitOrthoscopeCli, WrongMineralHasNoAcceptableFit) {
+    const testing::CommandResult run =
+        petroscope("fit orthoscope " + photos() + " --mineral calcite --thickness-range 20um:60um -o " + testing::quoted(out()));
+    EXPECT_EQ(run.exit_code, 1) << run.out << run.err;
+    EXPECT_NE(run.err.find("no acceptable fit"), std::string::npos) << run.err;
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <cmath>
+#include <functional>
 #include <random>
 #include <string>
 
@@ -67,6 +68,35 @@ inline ConoscopePhotoModel photo_model(const Mineral& mineral, Cut cut, const Ph
     return model;
 }
 
+/// What a camera makes of linear RGB (CV_64FC3, channels R, G, B): `tone` per channel, Gaussian noise of
+/// σ = `noise`, 8-bit quantisation and JPEG at `jpeg_quality` (0: none); camera values 0 … 1.
+inline Image camera_image(const cv::Mat& linear, const std::function<double(int, double)>& tone, double noise_sigma, int jpeg_quality,
+                          unsigned seed) {
+    std::mt19937 random(seed);
+    std::normal_distribution<double> noise(0.0, noise_sigma);
+    cv::Mat encoded(linear.rows, linear.cols, CV_8UC3);
+    for (int y = 0; y < linear.rows; ++y) {
+        for (int x = 0; x < linear.cols; ++x) {
+            for (int c = 0; c < 3; ++c) {
+                const double value = tone(c, linear.at<cv::Vec3d>(y, x)[c]) + noise(random);
+                encoded.at<cv::Vec3b>(y, x)[2 - c] = static_cast<unsigned char>(std::lround(std::clamp(value, 0.0, 1.0) * 255.0));
+            }
+        }
+    }
+    if (jpeg_quality > 0) {
+        std::vector<unsigned char> bytes;
+        cv::imencode(".jpg", encoded, bytes, {cv::IMWRITE_JPEG_QUALITY, jpeg_quality});
+        encoded = cv::imdecode(bytes, cv::IMREAD_COLOR);
+    }
+    Image photo(linear.cols, linear.rows, 3);
+    for (int y = 0; y < linear.rows; ++y) {
+        for (int x = 0; x < linear.cols; ++x) {
+            for (int c = 0; c < 3; ++c) photo.at(x, y, c) = static_cast<float>(encoded.at<cv::Vec3b>(y, x)[2 - c] / 255.0);
+        }
+    }
+    return photo;
+}
+
 /// The photo (camera values 0 … 1, 3 channels) of `size_px`² that `truth` describes; `seed` for the noise.
 inline Image synthesize_photo(const ConoscopePhotoModel& model, const PhotoLight& light, const PhotoTruth& truth, int size_px,
                               unsigned seed) {
@@ -98,30 +128,9 @@ inline Image synthesize_photo(const ConoscopePhotoModel& model, const PhotoLight
         }
     }
     if (truth.blur_px > 0.0) cv::GaussianBlur(linear, linear, cv::Size(0, 0), truth.blur_px);
-    std::mt19937 random(seed);
-    std::normal_distribution<double> noise(0.0, truth.noise);
-    cv::Mat encoded(size_px, size_px, CV_8UC3);
-    for (int y = 0; y < size_px; ++y) {
-        for (int x = 0; x < size_px; ++x) {
-            for (int c = 0; c < 3; ++c) {
-                const double exposed = std::max(truth.gains[c] * linear.at<cv::Vec3d>(y, x)[c], 0.0);
-                const double value = std::pow(exposed, 1.0 / truth.gamma) + noise(random);
-                encoded.at<cv::Vec3b>(y, x)[2 - c] = static_cast<unsigned char>(std::lround(std::clamp(value, 0.0, 1.0) * 255.0));
-            }
-        }
-    }
-    if (truth.jpeg_quality > 0) {
-        std::vector<unsigned char> bytes;
-        cv::imencode(".jpg", encoded, bytes, {cv::IMWRITE_JPEG_QUALITY, truth.jpeg_quality});
-        encoded = cv::imdecode(bytes, cv::IMREAD_COLOR);
-    }
-    Image photo(size_px, size_px, 3);
-    for (int y = 0; y < size_px; ++y) {
-        for (int x = 0; x < size_px; ++x) {
-            for (int c = 0; c < 3; ++c) photo.at(x, y, c) = static_cast<float>(encoded.at<cv::Vec3b>(y, x)[2 - c] / 255.0);
-        }
-    }
-    return photo;
+    return camera_image(
+        linear, [&truth](int c, double value) { return std::pow(std::max(truth.gains[c] * value, 0.0), 1.0 / truth.gamma); }, truth.noise,
+        truth.jpeg_quality, seed);
 }
 
 }  // namespace petroscope::testing

@@ -1,7 +1,9 @@
 // PNG output: every linear value is written as the 8-bit code of the sRGB curve, round(255·encode(v)).
+// Photo input: 16-bit PNG and TIFF (cameras and raw converters write them) read as code / 65535.
 #include "petroscope/io/image_writer.hpp"
 #include "petroscope/spectral/color.hpp"
 
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -40,6 +42,27 @@ TEST(PngWriter, WritesTheSrgbCodeOfEveryValue) {
         mismatches += std::lround(255.0 * read.pixels[i]) != expected;
     }
     EXPECT_EQ(mismatches, 0);
+}
+
+TEST(ImageReader, ReadsSixteenBitPhotosAsCodeOver65535) {
+    std::vector<std::uint16_t> codes;
+    for (int i = 0; i < 4 * 3 * 3; ++i) codes.push_back(static_cast<std::uint16_t>((i * 2731 + 17) % 65536));
+    codes[0] = 0;
+    codes[1] = 65535;
+    for (const char* name : {"sixteen.tif", "sixteen.png"}) {
+        const std::filesystem::path path = std::filesystem::path(PETROSCOPE_TEST_OUTPUT_DIR) / name;
+        std::filesystem::create_directories(path.parent_path());
+        auto output = OIIO::ImageOutput::create(path.string());
+        ASSERT_TRUE(output) << name;
+        ASSERT_TRUE(output->open(path.string(), OIIO::ImageSpec(4, 3, 3, OIIO::TypeDesc::UINT16)));
+        ASSERT_TRUE(output->write_image(OIIO::TypeDesc::UINT16, codes.data()));
+        ASSERT_TRUE(output->close());
+        const Image image = read_image(path);
+        ASSERT_EQ(image.width, 4);
+        ASSERT_EQ(image.height, 3);
+        ASSERT_EQ(image.channels, 3);
+        for (std::size_t i = 0; i < codes.size(); ++i) EXPECT_FLOAT_EQ(image.pixels[i], static_cast<float>(codes[i] / 65535.0)) << name << " value " << i;
+    }
 }
 
 }  // namespace

@@ -1,0 +1,267 @@
+// petroscope fit orthoscope: a grain's thickness (and optic orientation) fitted to its interference colours
+// in one or several crossed-polar photos. The method: docs/fitting.md.
+#include "cli_common.hpp"
+#include "cli_light.hpp"
+#include "fit_report.hpp"
+
+#include "petroscope/core/error.hpp"
+#include "petroscope/core/text.hpp"
+#include "petroscope/fit/orthoscope_fit.hpp"
+#include "petroscope/io/atomic_file.hpp"
+#include "petroscope/io/data_files.hpp"
+#include "petroscope/io/image_writer.hpp"
+#include "petroscope/io/json_sidecar.hpp"
+#include "petroscope/microscope/orthoscope.hpp"
+#include "petroscope/optics/orientation.hpp"
+#include "petroscope/spectral/color.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <iostream>
+
+namespace petroscope::cli {
+namespace {
+
+struct GrainFitOptions {
+    std::vector<std::string> photos, stages, plates, regions, masks;
+    std::string mineral, orientation, euler, thickness_range = "1um:200um", output_dir;
+    double plate_deg = 45.0, condenser_na = 0.0, polarizer_deg = 0.0, analyzer_deg = 90.0;
+    bool exposure_free = false, json = false;
+    int candidates = 4;
+    LightOptions light;
+};
+
+/// The k-th of a per-photo option: one value for all photos, or one per photo.
+const std::string& per_photo(const std::vector<std::string>& values, std::size_t k, const std::string& option, std::size_t photos) {
+    if (values.size() != 1 && values.size() != photos) {
+        throw InputError(option + ": give one value for all " + std::to_string(photos) + " photos or one per photo (got " +
+                         std::to_string(values.size()) + ")");
+    }
+    return values[values.size() == 1 ? 0 : k];
+}
+
+/// "x,y,w,h" in pixels.
+std::array<int, 4> parse_region(const std::string& text) {
+    const auto parts = split(text, ',');
+    std::array<int, 4> region{};
+    for (std::size_t i = 0; i < 4; ++i) {
+        const auto value = parts.size() == 4 ? parse_double(parts[i]) : std::nullopt;
+        if (!value || *value != std::floor(*value) || std::abs(*value) > 1e6) {
+            throw InputError("--region '" + text + "': expected X,Y,WIDTH,HEIGHT in whole pixels (top-left corner first), e.g. 120,80,40,40");
+        }
+        region[i] = static_cast<int>(*value);
+    }
+    return region;
+}
+
+Eigen::Matrix3d parse_euler(const std::string& text) {
+    const auto parts = split(text, ',');
+    std::array<double, 3> angles{};
+    for (std::size_t i = 0; i < 3; ++i) {
+        const auto value = parts.size() == 3 ? parse_double(parts[i]) : std::nullopt;
+        if (!value) throw InputError("--euler-deg '" + text + "': expected ALPHA,BETA,GAMMA in degrees (ZYZ, docs/conventions.md)");
+        angles[i] = *value;
+    }
+    return euler_zyz_deg(angles[0], angles[1], angles[2]);
+}
+
+/// The grain's colour in photo k, from its region or mask.
+GrainColour measure(const GrainFitOptions& options, std::size_t k, const Image& photo) {
+    const std::string& file = options.photos[k];
+    if (photo.width == 0 || photo.height == 0) throw InputError("--photo " + file + ": the image is empty");
+    if (photo.channels < 3) throw InputError("--photo " + file + ": a grayscale photo; interference colours need a colour photo");
+    Image mask;
+    if (!options.masks.empty()) {
+        const std::string& mask_file = per_photo(options.masks, k, "--mask", options.photos.size());
+        mask = with_option("--mask", [&] { return read_image(mask_file); });
+        if (mask.width != photo.width || mask.height != photo.height) {
+            throw InputError("--mask " + mask_file + ": " + std::to_string(mask.width) + "x" + std::to_string(mask.height) + ", but the photo " + file +
+                             " is " + std::to_string(photo.width) + "x" + std::to_string(photo.height));
+        }
+        Image first(mask.width, mask.height, 1);  // non-zero in the first channel selects the pixel
+        for (int y = 0; y < mask.height; ++y) {
+            for (int x = 0; x < mask.width; ++x) first.at(x, y, 0) = mask.at(x, y, 0);
+        }
+        mask = first;
+    } else if (!options.regions.empty()) {
+        const std::array<int, 4> r = parse_region(per_photo(options.regions, k, "--region", options.photos.size()));
+        mask = with_option("--region", [&] { return rectangle_mask(photo.width, photo.height, r[0], r[1], r[2], r[3]); });
+    } else {
+        mask = Image(photo.width, photo.height, 1);
+        std::fill(mask.pixels.begin(), mask.pixels.end(), 1.0f);
+    }
+    return with_option("--photo " + file, [&] { return grain_colour(photo, mask); });
+}
+
+nlohmann::json report_json(const GrainFitOptions& options, const std::vector<GrainPhoto>& photos, const OrthoscopeFitOptions& fit,
+                           const OrthoscopeFitResult& result, double seconds) {
+    nlohmann::json photo_entries = nlohmann::json::array();
+    for (std::size_t k = 0; k < photos.size(); ++k) {
+        const GrainPhoto& photo = photos[k];
+        photo_entries.push_back({{"file", options.photos[k]},
+                                 {"stage_deg", photo.stage_deg},
+                                 {"plate", plate_json(photo.plate)},
+                                 {"pixels", photo.colour.pixels},
+                                 {"pixels_saturated", photo.colour.saturated},
+                                 {"mean_code", {photo.colour.mean_code.x(), photo.colour.mean_code.y(), photo.colour.mean_code.z()}},
+                                 {"model_code", {result.model_code[k].x(), result.model_code[k].y(), result.model_code[k].z()}}});
+    }
+    nlohmann::json candidates = nlohmann::json::array();
+    for (const GrainCandidate& candidate : result.candidates) {
+        candidates.push_back({{"thickness_um", candidate.thickness_um}, {"angles_deg", candidate.angles_deg}, {"rms_code", candidate.rms_code}});
+    }
+    const Eigen::Vector3d euler = euler_zyz_deg_of(result.axes);
+    return {{"program", "petroscope 0.1.0"},
+            {"command", "fit orthoscope"},
+            {"mineral", options.mineral},
+            {"photos", photo_entries},
+            {"orientation", grain_orientation_name(fit.orientation)},
+            {"condenser_na", fit.microscope.condenser_na},
+            {"polarizer_deg", fit.microscope.polars.polarizer_deg},
+            {"analyzer_deg", fit.microscope.polars.analyzer_deg},
+            {"thickness_search_um", {fit.thickness_min_um, fit.thickness_max_um}},
+            {"acceptable", result.acceptable},
+            {"verdict", result.verdict},
+            {"thickness_um", fitted_value_json(result.thickness_um)},
+            {"thickness_lower_bound_um", result.thickness_lower_bound_um ? nlohmann::json(*result.thickness_lower_bound_um) : nlohmann::json(nullptr)},
+            {"retardation_550nm", fitted_value_json(result.retardation_nm)},
+            {"birefringence_550nm", fitted_value_json(result.birefringence)},
+            {"angles_deg", {fitted_value_json(result.angles_deg[0]), fitted_value_json(result.angles_deg[1]), fitted_value_json(result.angles_deg[2])}},
+            {"angles_meaning", fit.orientation == GrainOrientation::max_birefringence ? "[0]: the indicatrix X axis at stage 0, degrees from E toward N"
+                               : fit.orientation == GrainOrientation::free           ? "ZYZ Euler angles of the indicatrix at stage 0"
+                                                                                     : "unused (orientation given)"},
+            {"euler_zyz_deg", {euler.x(), euler.y(), euler.z()}},
+            {"exposure", fitted_value_json(result.exposure)},
+            {"candidates", candidates},
+            {"rms_code", result.rms_code},
+            {"warnings", result.warnings},
+            {"seconds", seconds},
+            {"model", "mean sRGB code of the grain = encode_srgb(exposure * display(XYZ of the orthoscope's single-pass transmission)); "
+                      "see docs/fitting.md"},
+            {"sigma_meaning", "1 sigma from the Gauss-Newton covariance, residual variance floored at one code level"}};
+}
+
+/// Swatches: a row per photo, the measured colour left and the model's right, 64 px each.
+Image swatches(const std::vector<GrainPhoto>& photos, const OrthoscopeFitResult& result) {
+    constexpr int side = 64;
+    Image image(2 * side, side * static_cast<int>(photos.size()), 3);
+    for (std::size_t k = 0; k < photos.size(); ++k) {
+        for (int y = 0; y < side; ++y) {
+            for (int x = 0; x < 2 * side; ++x) {
+                const Eigen::Vector3d& code = x < side ? photos[k].colour.mean_code : result.model_code[k];
+                for (int c = 0; c < 3; ++c) image.at(x, static_cast<int>(k) * side + y, c) = static_cast<float>(decode_srgb(code[c]));
+            }
+        }
+    }
+    return image;
+}
+
+void run_fit_orthoscope(const GrainFitOptions& options, const std::string& minerals_dir) {
+    const MineralCatalog catalog = load_mineral_catalog(minerals_directory(minerals_dir));
+    const Mineral& mineral = with_option("--mineral", [&]() -> const Mineral& { return catalog.find(options.mineral); });
+    if (!options.masks.empty() && !options.regions.empty()) throw InputError("--mask and --region: give one or the other");
+    const ResolvedLight light = resolve_light(options.light);
+    if (light.monochromatic()) throw InputError("--wavelength: fit orthoscope needs white light (it reads interference colours)");
+
+    OrthoscopeFitOptions fit;
+    fit.microscope.wavelengths_nm = light.wavelengths_nm;
+    fit.microscope.condenser_na = options.condenser_na;
+    fit.microscope.polars = {options.polarizer_deg, options.analyzer_deg, true};
+    fit.mounting = standard_mounting(catalog);
+    fit.exposure = options.light.exposure;
+    fit.exposure_free = options.exposure_free;
+    fit.white_balance = !options.light.no_white_balance;
+    fit.candidates = options.candidates;
+    std::tie(fit.thickness_min_um, fit.thickness_max_um) = length_range_um("--thickness-range", options.thickness_range);
+    if (!options.euler.empty()) {
+        if (!options.orientation.empty() && options.orientation != "known") throw InputError("--euler-deg gives the orientation: it needs --orientation known (or none)");
+        fit.orientation = GrainOrientation::known;
+        fit.known_axes = parse_euler(options.euler);
+    } else if (!options.orientation.empty()) {
+        fit.orientation = with_option("--orientation", [&] { return parse_grain_orientation(options.orientation); });
+        if (fit.orientation == GrainOrientation::known) throw InputError("--orientation known: give the orientation with --euler-deg ALPHA,BETA,GAMMA");
+    }
+    OrthoscopeSettings check;
+    check.microscope = fit.microscope;
+    check.mounting = fit.mounting;
+    check.validate();
+
+    std::vector<GrainPhoto> photos;
+    for (std::size_t k = 0; k < options.photos.size(); ++k) {
+        GrainPhoto photo;
+        photo.label = options.photos[k];
+        const Image image = with_option("--photo", [&] { return read_image(options.photos[k]); });
+        photo.colour = measure(options, k, image);
+        if (!options.stages.empty()) {
+            const std::string& text = per_photo(options.stages, k, "--stage-deg", options.photos.size());
+            const auto value = parse_double(text);
+            if (!value || !std::isfinite(*value)) throw InputError("--stage-deg '" + text + "': expected an angle in degrees");
+            photo.stage_deg = *value;
+        }
+        if (!options.plates.empty()) {
+            const std::string& name = per_photo(options.plates, k, "--plate", options.photos.size());
+            if (name != "none") photo.plate = make_plate({name, options.plate_deg, 0.5}, catalog);
+        }
+        photos.push_back(photo);
+    }
+
+    const std::filesystem::path folder(options.output_dir);
+    if (!std::filesystem::is_directory(folder)) throw InputError("-o " + options.output_dir + ": not a folder (create it first)");
+    PendingOutputs pending;
+    const auto report_path = pending.add(folder / "report.json"), swatch_png = pending.add(folder / "colours.png");
+
+    const auto begin = std::chrono::steady_clock::now();
+    const SpectralIntegrator integrator(light.wavelengths_nm, load_cie_1931_observer(), load_light_source(options.light.illuminant));
+    const OrthoscopeFitResult result = fit_orthoscope_grain(photos, mineral, fit, integrator);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+
+    const nlohmann::json report = report_json(options, photos, fit, result, seconds);
+    write_image(swatches(photos, result), swatch_png, ImageFormat::png);
+    write_json_file(report, report_path);
+    pending.commit();
+
+    finish_fit(options.json, report, result.acceptable, result.verdict, [&] {
+        std::cout << "  thickness_um = " << fitted_value_text(result.thickness_um) << '\n';
+        if (result.thickness_lower_bound_um) std::cout << "  thickness_um >= " << format_significant(*result.thickness_lower_bound_um, 4) << '\n';
+        std::cout << "  retardation_550nm = " << fitted_value_text(result.retardation_nm) << '\n';
+        std::cout << "  birefringence_550nm = " << fitted_value_text(result.birefringence) << '\n';
+        if (fit.orientation == GrainOrientation::max_birefringence) std::cout << "  x_axis_deg = " << fitted_value_text(result.angles_deg[0]) << '\n';
+        if (fit.orientation == GrainOrientation::free) {
+            for (int a = 0; a < 3; ++a) std::cout << "  euler_deg[" << a << "] = " << fitted_value_text(result.angles_deg[static_cast<std::size_t>(a)]) << '\n';
+        }
+        if (fit.exposure_free) std::cout << "  exposure = " << fitted_value_text(result.exposure) << '\n';
+        for (const std::string& warning : result.warnings) std::cout << "warning: " << warning << '\n';
+        std::cout << "wrote " << (folder / "report.json").string() << " and colours.png (" << format_significant(seconds, 3) << " s)\n";
+    });
+}
+
+}  // namespace
+
+void add_fit_orthoscope_command(CLI::App* fit, const std::string& minerals_dir) {
+    auto options = std::make_shared<GrainFitOptions>();
+    CLI::App* command = fit->add_subcommand(
+        "orthoscope",
+        "Fit a grain's thickness (and optic orientation) to its colours in crossed-polar photos taken at known stage\n"
+        "angles, with or without an accessory plate (PNG, JPEG or TIFF, sRGB). Writes report.json and colours.png\n"
+        "(measured | model, a row per photo) into the -o folder.");
+    command->add_option("--photo", options->photos, "A photograph (repeat for several)")->required();
+    command->add_option("--mineral", options->mineral, "Mineral name or alias")->required();
+    command->add_option("--stage-deg", options->stages, "Stage angle of each photo (one for all, or one per photo; default 0)")->delimiter(',');
+    command->add_option("--plate", options->plates, "none | gypsum | mica for each photo (one for all, or one per photo)")->delimiter(',');
+    command->add_option("--plate-deg", options->plate_deg, "Slow direction of the plate, degrees from E toward N")->capture_default_str();
+    command->add_option("--region", options->regions, "X,Y,WIDTH,HEIGHT of the grain in pixels (one for all photos, or one per photo)");
+    command->add_option("--mask", options->masks, "Image whose non-zero pixels mark the grain (one for all photos, or one per photo)");
+    command->add_option("--orientation", options->orientation, "known | max-birefringence (default) | free");
+    command->add_option("--euler-deg", options->euler, "The grain's orientation, ZYZ Euler angles ALPHA,BETA,GAMMA (implies known)");
+    command->add_option("--thickness-range", options->thickness_range, "The global search range, MIN:MAX with units")->capture_default_str();
+    command->add_flag("--exposure-free", options->exposure_free, "Fit the exposure too (one factor for all photos)");
+    command->add_option("--condenser-na", options->condenser_na, "Condenser cone (Koehler), 0 = parallel light")->capture_default_str();
+    command->add_option("--polarizer-deg", options->polarizer_deg, "Polarizer direction in the lab")->capture_default_str();
+    command->add_option("--analyzer-deg", options->analyzer_deg, "Analyzer direction in the lab")->capture_default_str();
+    command->add_option("--candidates", options->candidates, "Grid minima refined by Ceres")->capture_default_str()->check(CLI::Range(1, 20));
+    add_light_options(command, options->light);
+    add_fit_output_options(command, options->output_dir, options->json);
+    command->callback([options, &minerals_dir] { run_fit_orthoscope(*options, minerals_dir); });
+}
+
+}  // namespace petroscope::cli

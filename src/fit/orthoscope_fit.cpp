@@ -1,0 +1,459 @@
+#include "petroscope/fit/orthoscope_fit.hpp"
+
+#include "petroscope/core/error.hpp"
+#include "petroscope/core/text.hpp"
+#include "petroscope/optics/orientation.hpp"
+#include "petroscope/spectral/color.hpp"
+
+#include <ceres/ceres.h>
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+namespace petroscope {
+namespace {
+
+constexpr double kReferenceNm = 550.0;
+// A colour residual of 0.03 rms (8 code levels of 255) is the most a fit of a real grain may leave.
+constexpr double kAcceptableRmsCode = 0.03;
+// The colour means of a photo are not trusted below one code level (camera, JPEG): the 1σ floor.
+constexpr double kCodeFloor = 1.0 / 255.0;
+// Codes up to this are dark: a photo this dark everywhere may be grey (an extinct grain) and still be used.
+constexpr double kDarkCode = 4.0 / 255.0;
+// Parameter layout of the least squares.
+enum Slot { kThickness = 0, kAngle0 = 1, kExposure = 4, kSlots = 5 };
+
+/// Everything that does not depend on the grain's parameters: per photo, the microscope optics.
+class GrainModel {
+public:
+    GrainModel(const std::vector<GrainPhoto>& photos, const Mineral& mineral, const OrthoscopeFitOptions& options,
+               const SpectralIntegrator& integrator)
+        : photos_(photos), mineral_(mineral), options_(options), integrator_(integrator),
+          display_(xyz_to_display_matrix(integrator.white_xyz(), options.white_balance, 1.0)) {
+        for (const GrainPhoto& photo : photos) {
+            auto settings = std::make_unique<MicroscopeSettings>(options.microscope);
+            settings->stage_deg = photo.stage_deg;
+            settings->plate = photo.plate;
+            optics_.push_back(std::make_unique<MicroscopeOptics>(*settings, options.mounting));
+            settings_.push_back(std::move(settings));
+        }
+    }
+
+    std::size_t photo_count() const { return photos_.size(); }
+    const Mineral& mineral() const { return mineral_; }
+    const GrainPhoto& photo(std::size_t k) const { return photos_[k]; }
+
+    /// The indicatrix axes at stage 0 for the orientation parameters (degrees) of the options' mode.
+    Eigen::Matrix3d axes(const double* angles_deg) const {
+        switch (options_.orientation) {
+            case GrainOrientation::known: return options_.known_axes;
+            case GrainOrientation::max_birefringence: {
+                // X along E, Z along N, Y down the microscope axis (X × Y = Z), then turned about the axis.
+                Eigen::Matrix3d in_plane;
+                in_plane << 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, -1.0, 0.0;
+                return rotation_z_deg(angles_deg[0]) * in_plane;
+            }
+            case GrainOrientation::free: return euler_zyz_deg(angles_deg[0], angles_deg[1], angles_deg[2]);
+        }
+        return options_.known_axes;
+    }
+
+    /// Per photo, the responses of a grain with these axes.
+    std::vector<GrainResponse> responses(const Eigen::Matrix3d& axes) const {
+        std::vector<GrainResponse> result;
+        for (const auto& optics : optics_) result.emplace_back(*optics, DispersiveMedium::of(mineral_, axes));
+        return result;
+    }
+
+    /// The sRGB code (0 … 1, clamped) the model predicts for photo k.
+    Eigen::Vector3d code(const GrainResponse& response, double thickness_um, double exposure, std::vector<double>& spectrum) const {
+        response.transmission(thickness_um, spectrum);
+        const Eigen::Vector3d linear = exposure * (display_ * integrator_.integrate(spectrum));
+        return {encode_srgb(std::clamp(linear.x(), 0.0, 1.0)), encode_srgb(std::clamp(linear.y(), 0.0, 1.0)),
+                encode_srgb(std::clamp(linear.z(), 0.0, 1.0))};
+    }
+
+    /// Residuals (model − photo, code units), 3 per photo, at the parameters.
+    void residuals(const double* parameters, double* out) const {
+        const std::vector<GrainResponse> grain = responses(axes(parameters + kAngle0));
+        std::vector<double> spectrum;
+        for (std::size_t k = 0; k < photos_.size(); ++k) {
+            const Eigen::Vector3d difference = code(grain[k], parameters[kThickness], parameters[kExposure], spectrum) - photos_[k].colour.mean_code;
+            for (int c = 0; c < 3; ++c) out[3 * k + static_cast<std::size_t>(c)] = difference[c];
+        }
+    }
+
+    double maximum_birefringence() const {
+        const Eigen::Vector3d n = mineral_.principal_n(kReferenceNm);
+        return n.maxCoeff() - n.minCoeff();
+    }
+
+private:
+    const std::vector<GrainPhoto>& photos_;
+    const Mineral& mineral_;
+    const OrthoscopeFitOptions& options_;
+    const SpectralIntegrator& integrator_;
+    Eigen::Matrix3d display_;
+    std::vector<std::unique_ptr<MicroscopeSettings>> settings_;  // the optics keep references to them
+    std::vector<std::unique_ptr<MicroscopeOptics>> optics_;
+};
+
+struct ColourCost {
+    const GrainModel* model;
+    bool operator()(double const* const* parameters, double* residuals) const {
+        model->residuals(parameters[0], residuals);
+        return true;
+    }
+};
+
+int angle_count(GrainOrientation orientation) {
+    switch (orientation) {
+        case GrainOrientation::known: return 0;
+        case GrainOrientation::max_birefringence: return 1;
+        case GrainOrientation::free: return 3;
+    }
+    return 0;
+}
+
+std::array<bool, kSlots> free_slots(const OrthoscopeFitOptions& options) {
+    std::array<bool, kSlots> free{};
+    free[kThickness] = true;
+    for (int a = 0; a < angle_count(options.orientation); ++a) free[static_cast<std::size_t>(kAngle0 + a)] = true;
+    free[kExposure] = options.exposure_free;
+    return free;
+}
+
+/// One point of the global search.
+struct GridPoint {
+    double cost = 0.0;
+    double thickness_um = 0.0;
+    std::array<double, 3> angles_deg{};
+};
+
+/// The grid over orientation × thickness, every point's colour cost (Σ residual²).
+std::vector<GridPoint> global_search(const GrainModel& model, const OrthoscopeFitOptions& options) {
+    // Thickness steps of at most 15 nm of retardation at the maximum birefringence (interference colours
+    // change visibly over ~30 nm), at most 3000 of them.
+    const double range = options.thickness_max_um - options.thickness_min_um;
+    const double step_um = std::max(0.015 / std::max(model.maximum_birefringence(), 1e-6), range / 3000.0);
+    const int thickness_steps = static_cast<int>(std::ceil(range / step_um)) + 1;
+    std::vector<std::array<double, 3>> orientations;
+    switch (options.orientation) {
+        case GrainOrientation::known: orientations.push_back({0.0, 0.0, 0.0}); break;
+        case GrainOrientation::max_birefringence:
+            for (double a = 0.0; a < 180.0; a += 7.5) orientations.push_back({a, 0.0, 0.0});
+            break;
+        case GrainOrientation::free:
+            // The indicatrix is symmetric under half-turns about its axes: α, γ over 180°, β over 90°.
+            for (double alpha = 0.0; alpha < 180.0; alpha += 22.5) {
+                for (double beta = 0.0; beta <= 90.0; beta += 15.0) {
+                    for (double gamma = 0.0; gamma < 180.0; gamma += 22.5) orientations.push_back({alpha, beta, gamma});
+                }
+            }
+            break;
+    }
+    std::vector<GridPoint> grid(orientations.size() * static_cast<std::size_t>(thickness_steps));
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::size_t o = 0; o < orientations.size(); ++o) {
+        const std::vector<GrainResponse> grain = model.responses(model.axes(orientations[o].data()));
+        std::vector<double> spectrum;
+        for (int s = 0; s < thickness_steps; ++s) {
+            const double thickness = std::min(options.thickness_min_um + s * step_um, options.thickness_max_um);
+            double cost = 0.0;
+            for (std::size_t k = 0; k < model.photo_count(); ++k) {
+                cost += (model.code(grain[k], thickness, options.exposure, spectrum) - model.photo(k).colour.mean_code).squaredNorm();
+            }
+            grid[o * static_cast<std::size_t>(thickness_steps) + static_cast<std::size_t>(s)] = {cost, thickness, orientations[o]};
+        }
+    }
+    return grid;
+}
+
+/// The best `count` grid points that are local minima in thickness at their orientation and differ from
+/// each other by more than a few steps.
+std::vector<GridPoint> starting_points(std::vector<GridPoint> grid, int count, double thickness_step_um) {
+    std::sort(grid.begin(), grid.end(), [](const GridPoint& a, const GridPoint& b) { return a.cost < b.cost; });
+    std::vector<GridPoint> chosen;
+    for (const GridPoint& point : grid) {
+        if (static_cast<int>(chosen.size()) >= count) break;
+        const bool near_chosen = std::any_of(chosen.begin(), chosen.end(), [&](const GridPoint& other) {
+            return std::abs(other.thickness_um - point.thickness_um) < 4.0 * thickness_step_um;
+        });
+        if (!near_chosen) chosen.push_back(point);
+    }
+    return chosen;
+}
+
+/// Refines one start with Ceres (Levenberg–Marquardt, central differences); returns Σ residual²/2.
+double refine(const GrainModel& model, const OrthoscopeFitOptions& options, std::array<double, kSlots>& parameters) {
+    auto* cost = new ceres::DynamicNumericDiffCostFunction<ColourCost, ceres::CENTRAL>(new ColourCost{&model});
+    cost->AddParameterBlock(kSlots);
+    cost->SetNumResiduals(static_cast<int>(3 * model.photo_count()));
+    ceres::Problem problem;
+    problem.AddResidualBlock(cost, nullptr, parameters.data());
+    const std::array<bool, kSlots> free = free_slots(options);
+    std::vector<int> fixed;
+    for (int j = 0; j < kSlots; ++j) {
+        if (!free[static_cast<std::size_t>(j)]) fixed.push_back(j);
+    }
+    problem.SetManifold(parameters.data(), new ceres::SubsetManifold(kSlots, fixed));
+    problem.SetParameterLowerBound(parameters.data(), kThickness, options.thickness_min_um);
+    problem.SetParameterUpperBound(parameters.data(), kThickness, options.thickness_max_um);
+    problem.SetParameterLowerBound(parameters.data(), kExposure, 0.05);
+    problem.SetParameterUpperBound(parameters.data(), kExposure, 20.0);
+    ceres::Solver::Options solver;
+    solver.linear_solver_type = ceres::DENSE_QR;
+    solver.max_num_iterations = 100;
+    solver.function_tolerance = 1e-12;
+    solver.parameter_tolerance = 1e-10;
+    solver.logging_type = ceres::SILENT;
+    ceres::Solver::Summary summary;
+    ceres::Solve(solver, &problem, &summary);
+    return summary.final_cost;
+}
+
+/// Central-difference Jacobian of the residuals with respect to the free slots, m × p.
+Eigen::MatrixXd jacobian(const GrainModel& model, const std::array<double, kSlots>& at, const std::vector<int>& free) {
+    const auto m = static_cast<Eigen::Index>(3 * model.photo_count());
+    Eigen::MatrixXd result(m, static_cast<Eigen::Index>(free.size()));
+    Eigen::VectorXd plus(m), minus(m);
+    for (std::size_t a = 0; a < free.size(); ++a) {
+        const auto slot = static_cast<std::size_t>(free[a]);
+        const double h = 1e-5 * std::max(std::abs(at[slot]), 1.0);
+        std::array<double, kSlots> shifted = at;
+        shifted[slot] = at[slot] + h;
+        model.residuals(shifted.data(), plus.data());
+        shifted[slot] = at[slot] - h;
+        model.residuals(shifted.data(), minus.data());
+        result.col(static_cast<Eigen::Index>(a)) = (plus - minus) / (2.0 * h);
+    }
+    return result;
+}
+
+/// The retardation (nm) and birefringence at 550 nm of the parameters.
+std::array<double, 2> derived(const GrainModel& model, const std::array<double, kSlots>& at) {
+    const double birefringence = normal_incidence_birefringence(model.mineral(), model.axes(at.data() + kAngle0), kReferenceNm);
+    return {at[kThickness] * birefringence * 1e3, birefringence};
+}
+
+/// 1σ of the free parameters and the derived values from the Gauss–Newton covariance s²(JᵀJ)⁺, with
+/// s² the residual variance (floored at one code level); directions of JᵀJ with relative eigenvalues
+/// below 1e-10 are the photo's blind spots: parameters with a large share in them are not determined.
+void uncertainties(const GrainModel& model, const OrthoscopeFitOptions& options, const std::array<double, kSlots>& best,
+                   OrthoscopeFitResult& result) {
+    const std::array<bool, kSlots> free_flags = free_slots(options);
+    std::vector<int> free;
+    for (int j = 0; j < kSlots; ++j) {
+        if (free_flags[static_cast<std::size_t>(j)]) free.push_back(j);
+    }
+    const Eigen::MatrixXd j = jacobian(model, best, free);
+    const auto m = static_cast<double>(j.rows()), p = static_cast<double>(j.cols());
+    Eigen::VectorXd residual(j.rows());
+    model.residuals(best.data(), residual.data());
+    const double variance = m > p ? std::max(residual.squaredNorm() / (m - p), kCodeFloor * kCodeFloor) : kCodeFloor * kCodeFloor;
+    const Eigen::MatrixXd normal = j.transpose() * j;
+    const Eigen::VectorXd scale = normal.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(scale.asDiagonal() * normal * scale.asDiagonal());
+    const double largest = eigen.eigenvalues().maxCoeff();
+    Eigen::VectorXd inverse_eigen = Eigen::VectorXd::Zero(j.cols());
+    std::vector<bool> blind(free.size(), false);
+    for (Eigen::Index e = 0; e < j.cols(); ++e) {
+        if (eigen.eigenvalues()[e] > 1e-10 * largest) {
+            inverse_eigen[e] = 1.0 / eigen.eigenvalues()[e];
+            continue;
+        }
+        for (Eigen::Index a = 0; a < j.cols(); ++a) {
+            if (std::abs(eigen.eigenvectors()(a, e)) > 0.2) blind[static_cast<std::size_t>(a)] = true;
+        }
+    }
+    const Eigen::MatrixXd covariance =
+        variance * scale.asDiagonal() * eigen.eigenvectors() * inverse_eigen.asDiagonal() * eigen.eigenvectors().transpose() * scale.asDiagonal();
+
+    const auto assign = [&](FittedValue& fitted, int slot, double limit) {
+        fitted.value = best[static_cast<std::size_t>(slot)];
+        const auto position = std::find(free.begin(), free.end(), slot);
+        fitted.free = position != free.end();
+        if (!fitted.free) return;
+        const auto a = position - free.begin();
+        const double sigma = std::sqrt(std::max(covariance(a, a), 0.0));
+        fitted.identifiable = !blind[static_cast<std::size_t>(a)] && sigma <= limit;
+        if (fitted.identifiable) fitted.sigma = sigma;
+    };
+    assign(result.thickness_um, kThickness, 0.25 * best[kThickness]);
+    for (int a = 0; a < 3; ++a) assign(result.angles_deg[static_cast<std::size_t>(a)], kAngle0 + a, 30.0);
+    assign(result.exposure, kExposure, 0.5 * best[kExposure]);
+
+    // Derived values: σ² = gᵀCg with g their gradient in the free parameters.
+    const std::array<double, 2> centre = derived(model, best);
+    Eigen::MatrixXd gradient(2, j.cols());
+    for (std::size_t a = 0; a < free.size(); ++a) {
+        const auto slot = static_cast<std::size_t>(free[a]);
+        const double h = 1e-5 * std::max(std::abs(best[slot]), 1.0);
+        std::array<double, kSlots> up = best, down = best;
+        up[slot] += h;
+        down[slot] -= h;
+        const std::array<double, 2> high = derived(model, up), low = derived(model, down);
+        for (int d = 0; d < 2; ++d) gradient(d, static_cast<Eigen::Index>(a)) = (high[static_cast<std::size_t>(d)] - low[static_cast<std::size_t>(d)]) / (2.0 * h);
+    }
+    const Eigen::Matrix2d derived_covariance = gradient * covariance * gradient.transpose();
+    // The birefringence is a fitted value only when the orientation out of the section's plane is free.
+    const bool orientation_fixed = options.orientation != GrainOrientation::free;
+    result.retardation_nm = {centre[0], std::sqrt(std::max(derived_covariance(0, 0), 0.0)), true, true};
+    result.birefringence = {centre[1], orientation_fixed ? std::nullopt : std::optional<double>(std::sqrt(std::max(derived_covariance(1, 1), 0.0))),
+                            !orientation_fixed, true};
+    if (result.retardation_nm.sigma && *result.retardation_nm.sigma > 0.25 * std::abs(centre[0])) {
+        result.retardation_nm.identifiable = false;
+        result.retardation_nm.sigma.reset();
+    }
+}
+
+}  // namespace
+
+double normal_incidence_birefringence(const Mineral& mineral, const Eigen::Matrix3d& axes, double wavelength_nm) {
+    const Eigen::Vector3d n = mineral.principal_n(wavelength_nm);
+    const Eigen::Matrix3d eta = axes * n.cwiseAbs2().cwiseInverse().asDiagonal() * axes.transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> section(eta.topLeftCorner<2, 2>());
+    return 1.0 / std::sqrt(section.eigenvalues()[0]) - 1.0 / std::sqrt(section.eigenvalues()[1]);
+}
+
+std::string_view grain_orientation_name(GrainOrientation orientation) {
+    switch (orientation) {
+        case GrainOrientation::known: return "known";
+        case GrainOrientation::max_birefringence: return "max-birefringence";
+        case GrainOrientation::free: return "free";
+    }
+    return "known";
+}
+
+GrainOrientation parse_grain_orientation(std::string_view name) {
+    for (const GrainOrientation o : {GrainOrientation::known, GrainOrientation::max_birefringence, GrainOrientation::free}) {
+        if (name == grain_orientation_name(o)) return o;
+    }
+    throw InputError("unknown grain orientation '" + std::string(name) + "' (expected known, max-birefringence or free)");
+}
+
+Image rectangle_mask(int width_px, int height_px, int x0, int y0, int width, int height) {
+    if (width <= 0 || height <= 0 || x0 < 0 || y0 < 0 || x0 + width > width_px || y0 + height > height_px) {
+        throw InputError("region " + std::to_string(x0) + "," + std::to_string(y0) + "," + std::to_string(width) + "," + std::to_string(height) +
+                         " is empty or leaves the " + std::to_string(width_px) + "x" + std::to_string(height_px) + " photo");
+    }
+    Image mask(width_px, height_px, 1);
+    for (int y = y0; y < y0 + height; ++y) {
+        for (int x = x0; x < x0 + width; ++x) mask.at(x, y, 0) = 1.0f;
+    }
+    return mask;
+}
+
+GrainColour grain_colour(const Image& photo, const Image& mask, double saturated_level) {
+    if (photo.channels < 3) throw InputError("the photo has " + std::to_string(photo.channels) + " channel(s); interference colours need a colour photo");
+    if (mask.width != photo.width || mask.height != photo.height) {
+        throw InputError("the mask is " + std::to_string(mask.width) + "x" + std::to_string(mask.height) + ", the photo " +
+                         std::to_string(photo.width) + "x" + std::to_string(photo.height));
+    }
+    GrainColour colour;
+    // A photo saved from a grey image has R = G = B everywhere; one of an extinct grain may too, but is dark.
+    bool colour_seen = false, bright_seen = false;
+    for (int y = 0; y < photo.height; ++y) {
+        for (int x = 0; x < photo.width; ++x) {
+            const Eigen::Vector3d value(photo.at(x, y, 0), photo.at(x, y, 1), photo.at(x, y, 2));
+            colour_seen = colour_seen || value.x() != value.y() || value.y() != value.z();
+            bright_seen = bright_seen || value.maxCoeff() > kDarkCode;
+            if (mask.at(x, y, 0) == 0.0f) continue;
+            if (value.maxCoeff() >= saturated_level) {
+                ++colour.saturated;
+                continue;
+            }
+            colour.mean_code += value;
+            ++colour.pixels;
+        }
+    }
+    if (colour.pixels == 0) {
+        throw InputError(colour.saturated > 0 ? "every pixel of the grain's region is saturated (a channel at " + format_significant(saturated_level, 4) + " or above)"
+                                               : std::string("the mask or region selects no pixel"));
+    }
+    colour.grey = !colour_seen && bright_seen;
+    colour.mean_code /= static_cast<double>(colour.pixels);
+    return colour;
+}
+
+OrthoscopeFitResult fit_orthoscope_grain(const std::vector<GrainPhoto>& photos, const Mineral& mineral, const OrthoscopeFitOptions& options_in,
+                                         const SpectralIntegrator& integrator) {
+    if (photos.empty()) throw InputError("no photo to fit");
+    if (!(options_in.thickness_min_um > 0.0 && options_in.thickness_min_um < options_in.thickness_max_um && std::isfinite(options_in.thickness_max_um))) {
+        throw InputError("the thickness range must be 0 < min < max (got " + format_significant(options_in.thickness_min_um, 6) + " to " +
+                         format_significant(options_in.thickness_max_um, 6) + " um)");
+    }
+    if (options_in.microscope.wavelengths_nm.size() != integrator.weights().size()) {
+        throw InputError("internal: the fit's wavelengths and the colour integrator's differ");
+    }
+    if (std::all_of(photos.begin(), photos.end(), [](const GrainPhoto& photo) { return photo.colour.grey; })) {
+        std::string names;
+        for (const GrainPhoto& photo : photos) names += (names.empty() ? "" : ", ") + (photo.label.empty() ? std::string("(unnamed)") : photo.label);
+        throw InputError("grayscale photo" + std::string(photos.size() == 1 ? " " : "s ") + names +
+                         " (R = G = B in every pixel): interference colours need a colour photo (a photo with the gypsum "
+                         "plate gives a first-order grey grain colour)");
+    }
+    if (mineral.optical_class == OpticalClass::isotropic) throw InputError(mineral.name + " is isotropic: it stays dark between crossed polars");
+    const OrthoscopeFitOptions& options = options_in;
+    const GrainModel model(photos, mineral, options, integrator);
+
+    const double range = options.thickness_max_um - options.thickness_min_um;
+    const double step_um = std::max(0.015 / std::max(model.maximum_birefringence(), 1e-6), range / 3000.0);
+    const std::vector<GridPoint> starts = starting_points(global_search(model, options), std::max(options.candidates, 1), step_um);
+
+    OrthoscopeFitResult result;
+    std::array<double, kSlots> best{};
+    double best_cost = std::numeric_limits<double>::infinity();
+    const double residual_count = 3.0 * static_cast<double>(photos.size());
+    for (const GridPoint& start : starts) {
+        std::array<double, kSlots> parameters{start.thickness_um, start.angles_deg[0], start.angles_deg[1], start.angles_deg[2], options.exposure};
+        const double cost = refine(model, options, parameters);
+        result.candidates.push_back({parameters[kThickness], {parameters[kAngle0], parameters[kAngle0 + 1], parameters[kAngle0 + 2]},
+                                     std::sqrt(2.0 * cost / residual_count)});
+        if (cost < best_cost) {
+            best_cost = cost;
+            best = parameters;
+        }
+    }
+    std::sort(result.candidates.begin(), result.candidates.end(), [](const GrainCandidate& a, const GrainCandidate& b) { return a.rms_code < b.rms_code; });
+    // Angles shown in their principal range: the indicatrix repeats every 180° about the microscope axis.
+    if (options.orientation == GrainOrientation::max_birefringence) best[kAngle0] -= 180.0 * std::floor(best[kAngle0] / 180.0);
+
+    uncertainties(model, options, best, result);
+    result.axes = model.axes(best.data() + kAngle0);
+    const std::vector<GrainResponse> grain = model.responses(result.axes);
+    std::vector<double> spectrum;
+    for (std::size_t k = 0; k < photos.size(); ++k) result.model_code.push_back(model.code(grain[k], best[kThickness], best[kExposure], spectrum));
+    result.rms_code = std::sqrt(2.0 * best_cost / residual_count);
+    result.acceptable = std::isfinite(result.rms_code) && result.rms_code <= kAcceptableRmsCode;
+    result.verdict = result.acceptable
+                         ? "the model matches the grain's colours to " + format_significant(255.0 * result.rms_code, 3) + " code levels rms"
+                         : "no acceptable fit: the colour residual is " + format_significant(255.0 * result.rms_code, 3) +
+                               " code levels rms (at most " + format_significant(255.0 * kAcceptableRmsCode, 3) + " accepted); is it " + mineral.name + "?";
+
+    if (options.orientation == GrainOrientation::free && result.retardation_nm.identifiable) {
+        result.thickness_lower_bound_um = std::abs(result.retardation_nm.value) / (model.maximum_birefringence() * 1e3);
+    }
+    if (options.orientation == GrainOrientation::max_birefringence) {
+        result.warnings.push_back("the thickness assumes the grain shows its highest interference colour (the section contains its fastest and "
+                                  "slowest directions); cut otherwise, the grain is thicker than this");
+        const bool plate = std::any_of(photos.begin(), photos.end(), [](const GrainPhoto& photo) { return photo.plate.has_value(); });
+        if (!plate) result.warnings.push_back("without a photo with an accessory plate the slow and fast directions cannot be told apart (angle +-90 deg)");
+    }
+    if (!result.thickness_um.identifiable) {
+        result.warnings.push_back("the photos do not determine the thickness (with the orientation free only the retardation t*dn is "
+                                  "measured); give the orientation (--euler-deg) or choose a grain of maximum birefringence");
+    }
+    if (result.thickness_um.identifiable && result.candidates.size() > 1 && result.candidates[1].rms_code < 1.5 * result.candidates[0].rms_code &&
+        std::abs(result.candidates[1].thickness_um - result.candidates[0].thickness_um) > 0.05 * result.candidates[0].thickness_um) {
+        result.warnings.push_back("another thickness, " + format_significant(result.candidates[1].thickness_um, 4) +
+                                  " um, fits almost as well; add photos (another stage angle, the gypsum plate) to tell them apart");
+    }
+    return result;
+}
+
+}  // namespace petroscope
