@@ -174,7 +174,12 @@ fit_dir=$(mktemp -d)
 fit_command=(fit conoscope --photo "$out/fit-calcite-photo.png" --mineral calcite --thickness 20um --tilt-deg 10
              --azimuth-deg 20 --free thickness,center,scale,rotation,tilt,white-balance,black,gamma,blur)
 echo "gallery.sh: fit" >&2
-"$binary" "${fit_command[@]}" -o "$fit_dir" >"$fit_dir/summary.txt" 2>&1
+if ! "$binary" "${fit_command[@]}" -o "$fit_dir" >"$fit_dir/summary.txt" 2>&1; then
+    echo "gallery.sh: failed: petroscope ${fit_command[*]} -o $fit_dir" >&2
+    cat "$fit_dir/summary.txt" >&2
+    rm -rf "$fit_dir"
+    exit 1
+fi
 cp "$fit_dir/side_by_side.png" "$out/fit-calcite-side-by-side.png"
 md "![photo, model and residual](gallery/fit-calcite-side-by-side.png)" "" \
    '```' "$(grep -v '^wrote' "$fit_dir/summary.txt")" '```' "" \

@@ -69,7 +69,6 @@ Eigen::Matrix3d parse_euler(const std::string& text) {
 GrainColour measure(const GrainFitOptions& options, std::size_t k, const Image& photo) {
     const std::string& file = options.photos[k];
     if (photo.width == 0 || photo.height == 0) throw InputError("--photo " + file + ": the image is empty");
-    if (photo.channels < 3) throw InputError("--photo " + file + ": a grayscale photo; interference colours need a colour photo");
     Image mask;
     if (!options.masks.empty()) {
         const std::string& mask_file = per_photo(options.masks, k, "--mask", options.photos.size());
@@ -78,11 +77,6 @@ GrainColour measure(const GrainFitOptions& options, std::size_t k, const Image& 
             throw InputError("--mask " + mask_file + ": " + std::to_string(mask.width) + "x" + std::to_string(mask.height) + ", but the photo " + file +
                              " is " + std::to_string(photo.width) + "x" + std::to_string(photo.height));
         }
-        Image first(mask.width, mask.height, 1);  // non-zero in the first channel selects the pixel
-        for (int y = 0; y < mask.height; ++y) {
-            for (int x = 0; x < mask.width; ++x) first.at(x, y, 0) = mask.at(x, y, 0);
-        }
-        mask = first;
     } else if (!options.regions.empty()) {
         const std::array<int, 4> r = parse_region(per_photo(options.regions, k, "--region", options.photos.size()));
         mask = with_option("--region", [&] { return rectangle_mask(photo.width, photo.height, r[0], r[1], r[2], r[3]); });

@@ -134,12 +134,17 @@ struct GridPoint {
     std::array<double, 3> angles_deg{};
 };
 
+/// The global search's thickness step: at most 15 nm of retardation at the maximum birefringence
+/// (interference colours change visibly over ~30 nm), at most 3000 steps over the range.
+double thickness_step_um(const GrainModel& model, const OrthoscopeFitOptions& options) {
+    const double range = options.thickness_max_um - options.thickness_min_um;
+    return std::max(0.015 / std::max(model.maximum_birefringence(), 1e-6), range / 3000.0);
+}
+
 /// The grid over orientation × thickness, every point's colour cost (Σ residual²).
 std::vector<GridPoint> global_search(const GrainModel& model, const OrthoscopeFitOptions& options) {
-    // Thickness steps of at most 15 nm of retardation at the maximum birefringence (interference colours
-    // change visibly over ~30 nm), at most 3000 of them.
     const double range = options.thickness_max_um - options.thickness_min_um;
-    const double step_um = std::max(0.015 / std::max(model.maximum_birefringence(), 1e-6), range / 3000.0);
+    const double step_um = thickness_step_um(model, options);
     const int thickness_steps = static_cast<int>(std::ceil(range / step_um)) + 1;
     std::vector<std::array<double, 3>> orientations;
     switch (options.orientation) {
@@ -173,8 +178,7 @@ std::vector<GridPoint> global_search(const GrainModel& model, const OrthoscopeFi
     return grid;
 }
 
-/// The best `count` grid points that are local minima in thickness at their orientation and differ from
-/// each other by more than a few steps.
+/// The best `count` grid points, each more than 4 thickness steps from those chosen before it.
 std::vector<GridPoint> starting_points(std::vector<GridPoint> grid, int count, double thickness_step_um) {
     std::sort(grid.begin(), grid.end(), [](const GridPoint& a, const GridPoint& b) { return a.cost < b.cost; });
     std::vector<GridPoint> chosen;
@@ -216,28 +220,36 @@ double refine(const GrainModel& model, const OrthoscopeFitOptions& options, std:
     return summary.final_cost;
 }
 
-/// Central-difference Jacobian of the residuals with respect to the free slots, m × p.
-Eigen::MatrixXd jacobian(const GrainModel& model, const std::array<double, kSlots>& at, const std::vector<int>& free) {
-    const auto m = static_cast<Eigen::Index>(3 * model.photo_count());
-    Eigen::MatrixXd result(m, static_cast<Eigen::Index>(free.size()));
-    Eigen::VectorXd plus(m), minus(m);
+/// Central differences of `f` (parameters → values, `rows` of them) with respect to the free slots,
+/// rows × free.size(), steps of 1e-5 relative (at least 1e-5).
+template <typename Function>
+Eigen::MatrixXd central_differences(const Function& f, Eigen::Index rows, const std::array<double, kSlots>& at, const std::vector<int>& free) {
+    Eigen::MatrixXd result(rows, static_cast<Eigen::Index>(free.size()));
     for (std::size_t a = 0; a < free.size(); ++a) {
         const auto slot = static_cast<std::size_t>(free[a]);
         const double h = 1e-5 * std::max(std::abs(at[slot]), 1.0);
-        std::array<double, kSlots> shifted = at;
-        shifted[slot] = at[slot] + h;
-        model.residuals(shifted.data(), plus.data());
-        shifted[slot] = at[slot] - h;
-        model.residuals(shifted.data(), minus.data());
-        result.col(static_cast<Eigen::Index>(a)) = (plus - minus) / (2.0 * h);
+        std::array<double, kSlots> up = at, down = at;
+        up[slot] += h;
+        down[slot] -= h;
+        result.col(static_cast<Eigen::Index>(a)) = (f(up) - f(down)) / (2.0 * h);
     }
     return result;
 }
 
-/// The retardation (nm) and birefringence at 550 nm of the parameters.
-std::array<double, 2> derived(const GrainModel& model, const std::array<double, kSlots>& at) {
+/// The residuals at the parameters, as a vector.
+Eigen::VectorXd residual_vector(const GrainModel& model, const std::array<double, kSlots>& at) {
+    Eigen::VectorXd residual(static_cast<Eigen::Index>(3 * model.photo_count()));
+    model.residuals(at.data(), residual.data());
+    return residual;
+}
+
+/// The retardation (nm) and birefringence at 550 nm of the parameters (a dynamic vector: GCC 12 warns,
+/// wrongly, of AVX-512 loads past a fixed-size 2-vector in the differences).
+Eigen::VectorXd derived(const GrainModel& model, const std::array<double, kSlots>& at) {
     const double birefringence = normal_incidence_birefringence(model.mineral(), model.axes(at.data() + kAngle0), kReferenceNm);
-    return {at[kThickness] * birefringence * 1e3, birefringence};
+    Eigen::VectorXd values(2);
+    values << at[kThickness] * birefringence * 1e3, birefringence;
+    return values;
 }
 
 /// 1σ of the free parameters and the derived values from the Gauss–Newton covariance s²(JᵀJ)⁺, with
@@ -250,10 +262,9 @@ void uncertainties(const GrainModel& model, const OrthoscopeFitOptions& options,
     for (int j = 0; j < kSlots; ++j) {
         if (free_flags[static_cast<std::size_t>(j)]) free.push_back(j);
     }
-    const Eigen::MatrixXd j = jacobian(model, best, free);
+    const Eigen::VectorXd residual = residual_vector(model, best);
+    const Eigen::MatrixXd j = central_differences([&](const auto& at) { return residual_vector(model, at); }, residual.size(), best, free);
     const auto m = static_cast<double>(j.rows()), p = static_cast<double>(j.cols());
-    Eigen::VectorXd residual(j.rows());
-    model.residuals(best.data(), residual.data());
     const double variance = m > p ? std::max(residual.squaredNorm() / (m - p), kCodeFloor * kCodeFloor) : kCodeFloor * kCodeFloor;
     const Eigen::MatrixXd normal = j.transpose() * j;
     const Eigen::VectorXd scale = normal.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
@@ -288,17 +299,8 @@ void uncertainties(const GrainModel& model, const OrthoscopeFitOptions& options,
     assign(result.exposure, kExposure, 0.5 * best[kExposure]);
 
     // Derived values: σ² = gᵀCg with g their gradient in the free parameters.
-    const std::array<double, 2> centre = derived(model, best);
-    Eigen::MatrixXd gradient(2, j.cols());
-    for (std::size_t a = 0; a < free.size(); ++a) {
-        const auto slot = static_cast<std::size_t>(free[a]);
-        const double h = 1e-5 * std::max(std::abs(best[slot]), 1.0);
-        std::array<double, kSlots> up = best, down = best;
-        up[slot] += h;
-        down[slot] -= h;
-        const std::array<double, 2> high = derived(model, up), low = derived(model, down);
-        for (int d = 0; d < 2; ++d) gradient(d, static_cast<Eigen::Index>(a)) = (high[static_cast<std::size_t>(d)] - low[static_cast<std::size_t>(d)]) / (2.0 * h);
-    }
+    const Eigen::VectorXd centre = derived(model, best);
+    const Eigen::MatrixXd gradient = central_differences([&](const auto& at) { return derived(model, at); }, 2, best, free);
     const Eigen::Matrix2d derived_covariance = gradient * covariance * gradient.transpose();
     // The birefringence is a fitted value only when the orientation out of the section's plane is free.
     const bool orientation_fixed = options.orientation != GrainOrientation::free;
@@ -349,7 +351,9 @@ Image rectangle_mask(int width_px, int height_px, int x0, int y0, int width, int
 }
 
 GrainColour grain_colour(const Image& photo, const Image& mask, double saturated_level) {
-    if (photo.channels < 3) throw InputError("the photo has " + std::to_string(photo.channels) + " channel(s); interference colours need a colour photo");
+    if (photo.channels < 3) {
+        throw InputError("a grayscale photo (" + std::to_string(photo.channels) + " channel); interference colours need a colour photo");
+    }
     if (mask.width != photo.width || mask.height != photo.height) {
         throw InputError("the mask is " + std::to_string(mask.width) + "x" + std::to_string(mask.height) + ", the photo " +
                          std::to_string(photo.width) + "x" + std::to_string(photo.height));
@@ -380,14 +384,14 @@ GrainColour grain_colour(const Image& photo, const Image& mask, double saturated
     return colour;
 }
 
-OrthoscopeFitResult fit_orthoscope_grain(const std::vector<GrainPhoto>& photos, const Mineral& mineral, const OrthoscopeFitOptions& options_in,
+OrthoscopeFitResult fit_orthoscope_grain(const std::vector<GrainPhoto>& photos, const Mineral& mineral, const OrthoscopeFitOptions& options,
                                          const SpectralIntegrator& integrator) {
     if (photos.empty()) throw InputError("no photo to fit");
-    if (!(options_in.thickness_min_um > 0.0 && options_in.thickness_min_um < options_in.thickness_max_um && std::isfinite(options_in.thickness_max_um))) {
-        throw InputError("the thickness range must be 0 < min < max (got " + format_significant(options_in.thickness_min_um, 6) + " to " +
-                         format_significant(options_in.thickness_max_um, 6) + " um)");
+    if (!(options.thickness_min_um > 0.0 && options.thickness_min_um < options.thickness_max_um && std::isfinite(options.thickness_max_um))) {
+        throw InputError("the thickness range must be 0 < min < max (got " + format_significant(options.thickness_min_um, 6) + " to " +
+                         format_significant(options.thickness_max_um, 6) + " um)");
     }
-    if (options_in.microscope.wavelengths_nm.size() != integrator.weights().size()) {
+    if (options.microscope.wavelengths_nm.size() != integrator.weights().size()) {
         throw InputError("internal: the fit's wavelengths and the colour integrator's differ");
     }
     if (std::all_of(photos.begin(), photos.end(), [](const GrainPhoto& photo) { return photo.colour.grey; })) {
@@ -398,12 +402,9 @@ OrthoscopeFitResult fit_orthoscope_grain(const std::vector<GrainPhoto>& photos, 
                          "plate gives a first-order grey grain colour)");
     }
     if (mineral.optical_class == OpticalClass::isotropic) throw InputError(mineral.name + " is isotropic: it stays dark between crossed polars");
-    const OrthoscopeFitOptions& options = options_in;
     const GrainModel model(photos, mineral, options, integrator);
-
-    const double range = options.thickness_max_um - options.thickness_min_um;
-    const double step_um = std::max(0.015 / std::max(model.maximum_birefringence(), 1e-6), range / 3000.0);
-    const std::vector<GridPoint> starts = starting_points(global_search(model, options), std::max(options.candidates, 1), step_um);
+    const std::vector<GridPoint> starts =
+        starting_points(global_search(model, options), std::max(options.candidates, 1), thickness_step_um(model, options));
 
     OrthoscopeFitResult result;
     std::array<double, kSlots> best{};

@@ -106,6 +106,18 @@ TEST_F(FitOrthoscopeCli, KnownOrientationGivesTheThicknessWithReportAndSwatches)
     EXPECT_NE(run.out.find("thickness_um = "), std::string::npos);
 }
 
+// The grain map marks the grain in the photos at stage 0 (at 30° the section's corners leave the field).
+TEST_F(FitOrthoscopeCli, MaskSelectsTheGrain) {
+    const testing::CommandResult run = petroscope(
+        "fit orthoscope --photo " + testing::quoted(scratch() / "xpl0.png") + " --photo " + testing::quoted(scratch() / "gypsum0.png") +
+        " --plate none,gypsum --mask " + testing::quoted(scratch() / "grain" / "grains.png") + " --mineral quartz --euler-deg=" + euler_ +
+        " --json -o " + testing::quoted(out()));
+    ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+    const nlohmann::json report = nlohmann::json::parse(run.out);
+    EXPECT_EQ(report["photos"][0]["pixels"].get<int>(), 64 * 64);
+    EXPECT_NEAR(report["thickness_um"]["value"].get<double>(), 30.0, 0.5);
+}
+
 TEST_F(FitOrthoscopeCli, FreeOrientationReportsTheRetardationNotTheThickness) {
     const testing::CommandResult run = petroscope("fit orthoscope " + photos() + " --mineral quartz --region 16,16,32,32 --orientation free --json -o " + testing::quoted(out()));
     ASSERT_EQ(run.exit_code, 0) << run.out << run.err;

@@ -26,8 +26,8 @@ struct GrainColour {
     bool grey = false;          // R = G = B in every pixel of the photo, and not all dark
 };
 
-/// Mean colour of the pixels of `photo` (3 channels, sRGB codes 0 … 1) where `mask` (same size, 1 channel)
-/// is non-zero. Throws InputError when the photo has fewer than 3 channels, the sizes differ, the mask
+/// Mean colour of the pixels of `photo` (3 channels, sRGB codes 0 … 1) where the first channel of `mask`
+/// (same size) is non-zero. Throws InputError when the photo has fewer than 3 channels, the sizes differ, the mask
 /// selects nothing or every selected pixel is saturated (`saturated_level`, on any channel). A photo with
 /// R = G = B everywhere is marked `grey` (a first-order grey grain may look so; an extinct one is dark).
 GrainColour grain_colour(const Image& photo, const Image& mask, double saturated_level = 0.995);
@@ -93,8 +93,7 @@ struct OrthoscopeFitResult {
     std::vector<std::string> warnings;
 };
 
-/// Fits the grain; `integrator` defines the white light and its wavelengths (options.microscope's are
-/// replaced by them). Throws InputError for unusable input (no photos, every photo grey, a thickness range
+/// Fits the grain; `integrator` defines the white light, on the wavelengths of options.microscope. Throws InputError for unusable input (no photos, every photo grey, a thickness range
 /// that is not 0 < min < max, a wavelength grid unlike the integrator's).
 OrthoscopeFitResult fit_orthoscope_grain(const std::vector<GrainPhoto>& photos, const Mineral& mineral,
                                          const OrthoscopeFitOptions& options, const SpectralIntegrator& integrator);
