@@ -61,6 +61,7 @@ public:
 std::unique_ptr<FrameOptions> make_conoscope_options();
 std::unique_ptr<FrameOptions> make_orthoscope_options();
 std::unique_ptr<FrameOptions> make_conical_options();
+std::unique_ptr<FrameOptions> make_render_options();
 
 /// The rendering subcommands by name, in the order of the help text.
 const std::vector<std::pair<std::string, std::function<std::unique_ptr<FrameOptions>()>>>& frame_commands();

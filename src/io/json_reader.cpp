@@ -1,5 +1,6 @@
 #include "petroscope/io/json_reader.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace petroscope {
@@ -19,6 +20,21 @@ JsonValue JsonValue::operator[](const std::string& key) const {
 JsonValue JsonValue::at(std::size_t index) const {
     if (!value_.is_array() || index >= value_.size()) throw error("expected an array with an element " + std::to_string(index));
     return JsonValue(value_[index], file_, path_ + "[" + std::to_string(index) + "]");
+}
+
+void JsonValue::only_keys(const std::vector<std::string>& allowed) const {
+    if (!value_.is_object()) throw error("expected an object");
+    for (const auto& item : value_.items()) {
+        if (std::find(allowed.begin(), allowed.end(), item.key()) != allowed.end()) continue;
+        std::string list;
+        for (const std::string& key : allowed) list += (list.empty() ? "" : ", ") + key;
+        throw error("unknown key '" + item.key() + "' (valid keys: " + list + ")");
+    }
+}
+
+std::size_t JsonValue::size() const {
+    if (!value_.is_array()) throw error("expected an array");
+    return value_.size();
 }
 
 double JsonValue::number() const {

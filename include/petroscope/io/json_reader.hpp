@@ -28,6 +28,11 @@ public:
     /// An array of exactly `count` finite numbers.
     std::vector<double> numbers(std::size_t count) const;
 
+    /// Throws naming the first key of this object not in `allowed` ("… unknown key 'x' (valid keys: …)").
+    void only_keys(const std::vector<std::string>& allowed) const;
+    /// The number of elements of an array (throws if not an array).
+    std::size_t size() const;
+
     InputError error(const std::string& expected) const;
 
 private:

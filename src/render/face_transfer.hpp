@@ -1,0 +1,77 @@
+#pragma once
+// The light transport across one crystal face for backward tracing, from the exact interface model
+// (optics/interface.hpp). A path traced from the camera meets a face; the light that arrives along it
+// came from the waves the interface solver creates for the reversed problem (reciprocity: the same
+// directions, reversed). For each such branch the forward transfer onto the traced wave is solved
+// exactly: a Mueller matrix (air to air), a Stokes column (crystal mode to air), a Stokes row (air to a
+// crystal mode) or a power (mode to mode). Stokes vectors are in each wave's (s, p) basis
+// (docs/interface.md); s_basis gives that basis for a normal and a wave direction.
+#include "petroscope/optics/interface.hpp"
+
+#include <Eigen/Core>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace petroscope::detail {
+
+/// ŝ of a wave with unit direction `k` at a face with unit `normal` (the solver's, medium 1 to 2):
+/// normalize(normal × k), or normal × x̂ (normal × ŷ when the normal lies along x) at normal incidence.
+Eigen::Vector3d s_basis(const Eigen::Vector3d& normal, const Eigen::Vector3d& k);
+
+/// The matrix taking a Stokes vector in the basis (ŝ_from, ŝ_from × k) to the basis (ŝ_to, ŝ_to × k) of
+/// the same wave: a rotation of the frame by φ from ŝ_from toward p̂_from (S1, S2 turn by 2φ).
+Eigen::Matrix4d stokes_frame_change(const Eigen::Vector3d& s_from, const Eigen::Vector3d& s_to, const Eigen::Vector3d& k);
+
+/// Near grazing incidence inside a crystal a wave's ray and its wave normal can lie on opposite sides of
+/// a face (walk-off): a ray that reaches the face with a wave normal pointing away from it, or a
+/// reflected mode whose wave normal points out. The interface model takes an incident wave by its wave
+/// normal, so these cannot be solved; the tracer ends such paths and counts them.
+inline bool walks_off(const Eigen::Vector3d& wave_normal_toward_face, const Eigen::Vector3d& outward) {
+    return !(wave_normal_toward_face.dot(outward) > 0.0);
+}
+
+/// One wave of the reversed problem: where the traced path continues.
+struct Branch {
+    bool in_crystal = false;           // a crystal mode (else a wave in the surrounding air)
+    std::string mode;                  // the crystal mode's name
+    Eigen::Vector3d wave_normal;       // unit, along the traced (backward) direction
+    Eigen::Vector3d ray;               // unit ray (Poynting) direction of the traced path
+    double power = 0.0;                // of the reversed problem, as a selection weight
+};
+
+/// The traced path arrives in the surrounding medium (index `n_outside`) along `direction` at a face
+/// whose outward normal is `outward`: the branches (reflected into the outside medium, refracted modes).
+std::vector<Branch> branches_from_outside(const Eigen::Vector3d& outward, const Eigen::Vector3d& direction, const OpticalMedium& outside,
+                                          const OpticalMedium& crystal);
+/// The traced path arrives inside the crystal in `mode` with `wave_normal` (which must point out through
+/// the face): the branches (reflected modes, the refracted outside wave unless totally reflected).
+std::vector<Branch> branches_from_inside(const Eigen::Vector3d& outward, const Eigen::Vector3d& wave_normal, const std::string& mode,
+                                         const OpticalMedium& outside, const OpticalMedium& crystal);
+
+/// Forward transfers onto the traced wave. `traced` is the traced wave's backward direction (its wave
+/// normal); the light of interest travels along −traced. Each returns nullopt when the forward solution
+/// has no wave matching the traced one (a numerical inconsistency).
+///
+/// Outside → outside (reflection off the face): the Mueller matrix from the incident light (travelling
+/// along −branch, basis s_basis(−outward, −branch)) to the reflected light (along −traced, basis
+/// s_basis(−outward, −traced)).
+std::optional<Eigen::Matrix4d> reflection_mueller(const Eigen::Vector3d& outward, const Eigen::Vector3d& traced, const Eigen::Vector3d& branch,
+                                                  const OpticalMedium& outside, const OpticalMedium& crystal);
+/// Crystal mode `branch_mode` (travelling along −branch) → outside light along −traced: its Stokes vector
+/// per unit incident power, basis s_basis(outward, −traced).
+std::optional<Eigen::Vector4d> refraction_out_stokes(const Eigen::Vector3d& outward, const Eigen::Vector3d& traced, const Eigen::Vector3d& branch,
+                                                     const std::string& branch_mode, const OpticalMedium& outside, const OpticalMedium& crystal);
+/// Outside light (along −branch, basis s_basis(−outward, −branch)) → crystal mode `traced_mode` along
+/// −traced: the row q with power = q·S.
+std::optional<Eigen::RowVector4d> refraction_in_row(const Eigen::Vector3d& outward, const Eigen::Vector3d& traced, const std::string& traced_mode,
+                                                    const Eigen::Vector3d& branch, const OpticalMedium& outside, const OpticalMedium& crystal);
+/// Crystal mode `branch_mode` (along −branch) reflected inside into mode `traced_mode` along −traced:
+/// the power per unit incident power. The branch's wave normal must point into the crystal (branch ·
+/// outward < 0; see walks_off).
+std::optional<double> internal_reflection_power(const Eigen::Vector3d& outward, const Eigen::Vector3d& traced, const std::string& traced_mode,
+                                                const Eigen::Vector3d& branch, const std::string& branch_mode, const OpticalMedium& outside,
+                                                const OpticalMedium& crystal);
+
+}  // namespace petroscope::detail

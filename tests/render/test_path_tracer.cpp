@@ -1,0 +1,72 @@
+// The scene renderer against exact expectations: the furnace (a clear crystal in a uniformly glowing box
+// is invisible and leaves the light unpolarized), the doubling of a texture seen through calcite.
+#include "render_scenes.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+namespace petroscope {
+namespace {
+
+Scene furnace_scene(int size_px) {
+    Scene scene = testing::box_scene(size_px);
+    for (WallEmission& wall : scene.box.walls) {
+        wall.kind = WallEmission::Kind::uniform;
+        wall.uniform = SigmoidSpectrum::constant(1.0);
+    }
+    CalciteRhomb rhomb = calcite_rhomb({20.0, 16.0, 12.0});
+    // Tilted arbitrarily and lifted into the box so that every kind of face is seen.
+    const Eigen::Matrix3d turn = (Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitX()) * Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ())).toRotationMatrix();
+    std::vector<Eigen::Vector3d> vertices;
+    for (const auto& v : rhomb.polyhedron.vertices) vertices.push_back(turn * v + Eigen::Vector3d(-8, -6, 20));
+    ConvexPolyhedron shape = make_convex_polyhedron(vertices, rhomb.polyhedron.faces);
+    Eigen::Matrix3d axes;
+    const Eigen::Vector3d z = turn * rhomb.optic_axis;
+    const Eigen::Vector3d x = z.unitOrthogonal();
+    axes << x, z.cross(x), z;
+    scene.crystals.push_back(testing::calcite_crystal(std::move(shape), axes));
+    return scene;
+}
+
+TEST(PathTracer, FurnaceCrystalIsInvisibleAndLightStaysUnpolarized) {
+    const Scene scene = furnace_scene(24);
+    RenderSettings settings;
+    settings.samples_per_pixel = 32;
+    settings.max_depth = 100000;  // no truncation bias: Russian roulette ends the paths
+    const RenderResult result = render_scene(scene, testing::d65_spectrum(), settings);
+    std::printf("paths %llu, crystal interactions %llu, inconsistent %llu, roulette %llu, %.2f s\n",
+                static_cast<unsigned long long>(result.statistics.paths), static_cast<unsigned long long>(result.statistics.crystal_interactions),
+                static_cast<unsigned long long>(result.statistics.inconsistent), static_cast<unsigned long long>(result.statistics.roulette_killed),
+                result.statistics.seconds);
+    EXPECT_EQ(result.statistics.inconsistent, 0u);
+    EXPECT_GT(result.statistics.crystal_interactions, 1000u);
+    int outside_3_sigma = 0, crystal_pixels = 0;
+    double worst = 0.0, deviation_sum = 0.0, variance_sum = 0.0;
+    for (int y = 0; y < 24; ++y) {
+        for (int x = 0; x < 24; ++x) {
+            const double luminance = result.stokes_xyz.at(x, y, 1), error = result.standard_error_y.at(x, y, 0);
+            worst = std::max(worst, std::abs(luminance - 1.0) / std::max(error, 1e-12));
+            if (error > 1e-6) {
+                ++crystal_pixels;
+                deviation_sum += luminance - 1.0;
+                variance_sum += error * error;
+            }
+            if (std::abs(luminance - 1.0) > 3.0 * error + 1e-9) ++outside_3_sigma;
+            for (int s = 1; s <= 2; ++s) {
+                const double stokes = result.stokes_xyz.at(x, y, 3 * s + 1), stokes_error = result.standard_error_y.at(x, y, s);
+                if (std::abs(stokes) > 3.0 * stokes_error + 1e-9) ++outside_3_sigma;
+            }
+        }
+    }
+    std::printf("worst |Y - 1| / sigma: %.2f; values beyond 3 sigma: %d of 3 x 576\n", worst, outside_3_sigma);
+    // Pooled over the pixels that see the crystal, a bias of a fraction of one pixel's σ would show.
+    const double mean_deviation = deviation_sum / crystal_pixels, mean_sigma = std::sqrt(variance_sum) / crystal_pixels;
+    std::printf("%d pixels see the crystal: mean Y - 1 = %.2e +- %.2e\n", crystal_pixels, mean_deviation, mean_sigma);
+    EXPECT_GT(crystal_pixels, 100);
+    EXPECT_LE(std::abs(mean_deviation), 3.0 * mean_sigma);
+    EXPECT_LE(outside_3_sigma, 10);  // 0.27% of 1728 values expected beyond 3σ by chance: about 4.7
+}
+
+}  // namespace
+}  // namespace petroscope
