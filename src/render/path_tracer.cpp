@@ -27,16 +27,18 @@ using detail::Branch;
 /// one stream per pixel, seeded from the pixel index, so that images do not depend on the thread count.
 class Random {
 public:
-    explicit Random(std::uint64_t seed) : state_(seed) {}
-    std::uint64_t next() {
-        std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ULL);
+    /// Stream `stream` of seed `seed`: the state starts at a mix of both, so that neighbouring streams are
+    /// not shifted copies of each other (SplitMix64 steps its state by a constant).
+    Random(std::uint64_t seed, std::uint64_t stream) : state_(mix(mix(seed) + stream)) {}
+    std::uint64_t next() { return mix(state_ += 0x9e3779b97f4a7c15ULL); }
+    double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+
+private:
+    static std::uint64_t mix(std::uint64_t z) {
         z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
         z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
         return z ^ (z >> 31);
     }
-    double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
-
-private:
     std::uint64_t state_;
 };
 
@@ -334,7 +336,7 @@ RenderResult render_scene(const Scene& scene, const RenderSpectrum& spectrum, co
             try {
             for (int column = 0; column < width; ++column) {
                 const std::uint64_t pixel = static_cast<std::uint64_t>(row) * static_cast<std::uint64_t>(width) + static_cast<std::uint64_t>(column);
-                Random random(settings.seed * 0x2545F4914F6CDD1DULL + pixel * 0x9E3779B97F4A7C15ULL);
+                Random random(settings.seed, pixel);
                 Eigen::Matrix<double, 4, 3> sum = Eigen::Matrix<double, 4, 3>::Zero();
                 Eigen::Vector4d sum_y2 = Eigen::Vector4d::Zero();
                 const double offset = random.uniform();

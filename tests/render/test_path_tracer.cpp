@@ -16,10 +16,12 @@ Scene furnace_scene(int size_px) {
         wall.uniform = SigmoidSpectrum::constant(1.0);
     }
     CalciteRhomb rhomb = calcite_rhomb({20.0, 16.0, 12.0});
-    // Tilted arbitrarily and lifted into the box so that every kind of face is seen.
+    // Tilted arbitrarily and centred in the view, which it fills, so that every kind of face is seen.
     const Eigen::Matrix3d turn = (Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitX()) * Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ())).toRotationMatrix();
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    for (const auto& v : rhomb.polyhedron.vertices) centroid += turn * v / 8.0;
     std::vector<Eigen::Vector3d> vertices;
-    for (const auto& v : rhomb.polyhedron.vertices) vertices.push_back(turn * v + Eigen::Vector3d(-8, -6, 20));
+    for (const auto& v : rhomb.polyhedron.vertices) vertices.push_back(turn * v - centroid + Eigen::Vector3d(0, 0, 25));
     ConvexPolyhedron shape = make_convex_polyhedron(vertices, rhomb.polyhedron.faces);
     Eigen::Matrix3d axes;
     const Eigen::Vector3d z = turn * rhomb.optic_axis;
@@ -30,7 +32,8 @@ Scene furnace_scene(int size_px) {
 }
 
 TEST(PathTracer, FurnaceCrystalIsInvisibleAndLightStaysUnpolarized) {
-    const Scene scene = furnace_scene(24);
+    Scene scene = furnace_scene(24);
+    scene.camera.sensor_distance_mm = 60.0;
     RenderSettings settings;
     settings.samples_per_pixel = 32;
     settings.max_depth = 100000;  // no truncation bias: Russian roulette ends the paths

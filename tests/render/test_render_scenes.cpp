@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <numeric>
 #include <numbers>
 
 namespace petroscope {
@@ -99,6 +100,89 @@ TEST(RenderScenes, CalciteDoublesTheTextureByTheWalkOffAndAPolarizerSeparatesThe
     EXPECT_GT(e_unpolarized, 0.3 * o_unpolarized);
     EXPECT_LT(copy(ordinary, e_right), 0.02 * e_unpolarized);
     EXPECT_LT(copy(extraordinary, !e_right), 0.02 * o_unpolarized);
+}
+
+// The noise of a flat region seen through the crystal falls as 1/√spp: the standard deviation over pixels
+// of a uniformly grey wall seen through the slab, at 4 sample counts. (Below 16 spp it falls faster: the
+// wavelengths are stratified per pixel, and their part of the noise dies first.)
+TEST(RenderScenes, NoiseFallsAsOneOverSquareRootOfSamples) {
+    Scene scene = slab_scene(SigmoidSpectrum::constant(0.0));
+    scene.camera.width_px = scene.camera.height_px = 8;
+    WallEmission& bottom = scene.box.walls[static_cast<std::size_t>(Wall::bottom)];
+    bottom.kind = WallEmission::Kind::uniform;
+    bottom.uniform = SigmoidSpectrum::constant(0.5);
+    std::vector<double> log_spp, log_noise;
+    for (const int spp : {16, 64, 256, 1024}) {
+        RenderSettings settings;
+        settings.samples_per_pixel = spp;
+        settings.seed = 7;
+        const Image xyz = render_scene(scene, testing::d65_spectrum(), settings).camera_xyz(false, 0.0);
+        double sum = 0.0, sum2 = 0.0;
+        for (int y = 0; y < xyz.height; ++y) {
+            for (int x = 0; x < xyz.width; ++x) {
+                sum += xyz.at(x, y, 1);
+                sum2 += xyz.at(x, y, 1) * xyz.at(x, y, 1);
+            }
+        }
+        const double n = xyz.width * xyz.height, mean = sum / n, deviation = std::sqrt(std::max(sum2 / n - mean * mean, 0.0) * n / (n - 1));
+        std::printf("%3d spp: mean Y %.4f, relative noise %.4f\n", spp, mean, deviation / mean);
+        log_spp.push_back(std::log(spp));
+        log_noise.push_back(std::log(deviation / mean));
+    }
+    // Least-squares slope of log noise against log spp.
+    const double mx = std::accumulate(log_spp.begin(), log_spp.end(), 0.0) / 4, my = std::accumulate(log_noise.begin(), log_noise.end(), 0.0) / 4;
+    double sxy = 0.0, sxx = 0.0;
+    for (std::size_t k = 0; k < 4; ++k) {
+        sxy += (log_spp[k] - mx) * (log_noise[k] - my);
+        sxx += (log_spp[k] - mx) * (log_spp[k] - mx);
+    }
+    std::printf("slope %.3f\n", sxy / sxx);
+    EXPECT_NEAR(sxy / sxx, -0.5, 0.1);
+}
+
+// Outside the crystal every pixel whose footprint lies within one cell of the texture shows the cell's
+// own colour: ΔE00 < 1 against the texture (the paper's scene, at a fifth of its resolution).
+TEST(RenderScenes, TextureOutsideTheCrystalIsReproduced) {
+    const std::filesystem::path file = std::filesystem::path(PETROSCOPE_SOURCE_DIR) / "scenes" / "calcite-box.json";
+    Scene scene = read_scene(file, testing::render_minerals(), testing::d65_spectrum());
+    scene.camera.width_px = 96;
+    scene.camera.height_px = 87;
+    RenderSettings settings;
+    settings.samples_per_pixel = 4;
+    const Image xyz = render_scene(scene, testing::d65_spectrum(), settings).camera_xyz(false, 0.0);
+    const Image texture = colour_grid_texture(16, 13, 3, 16, 0.5);
+    const Eigen::Matrix3d to_xyz = testing::d65_spectrum().xyz_to_linear_srgb.inverse();
+    const Eigen::Vector3d white = to_xyz * Eigen::Vector3d::Ones();
+    const SceneCamera& camera = scene.camera;
+    const Eigen::Vector3d forward = (camera.target_mm - camera.position_mm).normalized(), right = forward.cross(camera.up).normalized(),
+                          up = right.cross(forward);
+    // The texture cell under an image point (pixel units), or −1 when the ray meets the crystal.
+    const auto cell = [&](double px, double py) {
+        const Eigen::Vector3d d = (camera.sensor_distance_mm * forward + (px / camera.width_px - 0.5) * camera.sensor_width_mm * right +
+                                   (0.5 - py / camera.height_px) * camera.sensor_height_mm * up).normalized();
+        if (intersect(scene.crystals[0].shape, camera.position_mm, d)) return -1;
+        const Eigen::Vector3d p = camera.position_mm + (scene.box.lower_mm.z() - camera.position_mm.z()) / d.z() * d;
+        const double u = (p.x() - scene.box.lower_mm.x()) / (scene.box.upper_mm.x() - scene.box.lower_mm.x());
+        const double v = (p.y() - scene.box.lower_mm.y()) / (scene.box.upper_mm.y() - scene.box.lower_mm.y());
+        if (u <= 0.0 || u >= 1.0 || v <= 0.0 || v >= 1.0) return -1;
+        return static_cast<int>(u * 16) + 100 * static_cast<int>((1.0 - v) * 13);
+    };
+    int compared = 0;
+    double worst = 0.0;
+    for (int y = 0; y < camera.height_px; ++y) {
+        for (int x = 0; x < camera.width_px; ++x) {
+            const int c = cell(x, y);
+            if (c < 0 || cell(x + 1, y) != c || cell(x, y + 1) != c || cell(x + 1, y + 1) != c) continue;
+            Eigen::Vector3d expected;
+            for (int k = 0; k < 3; ++k) expected[k] = decode_srgb(texture.at((c % 100) * 16 + 8, (c / 100) * 16 + 8, k));
+            const Eigen::Vector3d rendered(xyz.at(x, y, 0), xyz.at(x, y, 1), xyz.at(x, y, 2));
+            worst = std::max(worst, delta_e_2000(xyz_to_lab(rendered, white), xyz_to_lab(to_xyz * expected, white)));
+            ++compared;
+        }
+    }
+    std::printf("%d pixels compared, worst dE00 %.3g\n", compared, worst);
+    EXPECT_GT(compared, 2000);
+    EXPECT_LT(worst, 1.0);
 }
 
 }  // namespace
