@@ -4,6 +4,8 @@
 #include "petroscope/core/units.hpp"
 #include "petroscope/io/json_sidecar.hpp"
 
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <unistd.h>
@@ -13,9 +15,28 @@ namespace petroscope::cli {
 void show_progress(const std::string& label, double fraction_done) {
     static const bool terminal = ::isatty(STDERR_FILENO) != 0;
     if (!terminal) return;
+    // The clock starts at the first report of a task; the time left assumes a steady rate.
+    static std::string current_label;
+    static std::chrono::steady_clock::time_point started;
+    static double started_fraction = 0.0;
+    const auto now = std::chrono::steady_clock::now();
+    if (label != current_label || fraction_done < started_fraction) {
+        current_label = label;
+        started = now;
+        started_fraction = fraction_done;
+    }
+    const double elapsed = std::chrono::duration<double>(now - started).count();
+    const double done = fraction_done - started_fraction;
     const int percent = static_cast<int>(100.0 * fraction_done);
     std::fprintf(stderr, "\r%s %3d%%", label.c_str(), percent);
-    if (fraction_done >= 1.0) std::fprintf(stderr, "\n");
+    if (fraction_done < 1.0 && done > 0.0 && elapsed > 1.0) {
+        const long left = std::lround(elapsed * (1.0 - fraction_done) / done);
+        std::fprintf(stderr, " (%ld:%02ld left)   ", left / 60, left % 60);
+    }
+    if (fraction_done >= 1.0) {
+        std::fprintf(stderr, " (%.1f s)        \n", elapsed);
+        current_label.clear();
+    }
     std::fflush(stderr);
 }
 

@@ -109,8 +109,9 @@ PreparedFrame RenderOptions::prepare(FrameContext& context) const {
             for (int x = 0; x < xyz.width; ++x) {
                 const Eigen::Vector3d value = exposure * spectrum->xyz_to_linear_srgb * Eigen::Vector3d(xyz.at(x, y, 0), xyz.at(x, y, 1), xyz.at(x, y, 2));
                 for (int c = 0; c < 3; ++c) rgb.at(x, y, c) = static_cast<float>(value[c]);
-                const double luminance = result.stokes_xyz.at(x, y, 1);
-                if (luminance > 0.02) relative_errors.push_back(result.standard_error_y.at(x, y, 0) / luminance);
+                // Pixels that see a crystal: the others are exact (no wavelength depends on them).
+                const double luminance = result.stokes_xyz.at(x, y, 1), error = result.standard_error_y.at(x, y, 0);
+                if (luminance > 0.02 && error > 1e-6 * luminance) relative_errors.push_back(error / luminance);
             }
         }
         std::sort(relative_errors.begin(), relative_errors.end());
@@ -128,7 +129,9 @@ PreparedFrame RenderOptions::prepare(FrameContext& context) const {
             return relative_errors.empty() ? nlohmann::json(nullptr)
                                            : nlohmann::json(relative_errors[static_cast<std::size_t>(q * static_cast<double>(relative_errors.size() - 1))]);
         };
-        frame.sidecar["estimated_noise"] = {{"what", "standard error of each pixel's luminance Y (unpolarized S0) over its value, pixels with Y > 0.02"},
+        frame.sidecar["estimated_noise"] = {{"what", "standard error of each pixel's luminance Y (unpolarized S0) over its value, over the pixels with "
+                                                     "Y > 0.02 that see a crystal (the others are exact up to pixel-area sampling)"},
+                                            {"pixels", relative_errors.size()},
                                             {"median", quantile(0.5)},
                                             {"p90", quantile(0.9)}};
         return frame;
