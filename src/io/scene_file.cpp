@@ -36,10 +36,16 @@ public:
         if (found != indices_.end()) return found->second;
         Eigen::Vector3d linear;
         for (int c = 0; c < 3; ++c) linear[c] = decode_srgb(key[static_cast<std::size_t>(c)] / 255.0);
-        try {
-            spectra_.push_back(fit_sigmoid_spectrum(rgb_to_xyz_ * linear, spectrum_.wavelengths_nm, spectrum_.weights));
-        } catch (const InputError& e) {
-            throw where.error(e.what());
+        if (key[0] == key[1] && key[1] == key[2]) {
+            // Neutral: the light's own spectrum scaled, ρ constant (white and black included, which the
+            // sigmoid reaches only in the limit).
+            spectra_.push_back(SigmoidSpectrum::constant(linear[0]));
+        } else {
+            try {
+                spectra_.push_back(fit_sigmoid_spectrum(rgb_to_xyz_ * linear, spectrum_.wavelengths_nm, spectrum_.weights));
+            } catch (const InputError& e) {
+                throw where.error(e.what());
+            }
         }
         return indices_[key] = static_cast<int>(spectra_.size()) - 1;
     }

@@ -13,7 +13,7 @@ namespace petroscope {
 
 class SigmoidSpectrum {
 public:
-    /// ρ ≡ value (0 or 1: black and white, the limits the sigmoid reaches only at infinity).
+    /// ρ ≡ value: neutral colours (black and white are limits the sigmoid reaches only at infinity).
     static SigmoidSpectrum constant(double value);
     static SigmoidSpectrum polynomial(const std::array<double, 3>& coefficients);
 
