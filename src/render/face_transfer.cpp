@@ -53,7 +53,7 @@ std::vector<Branch> branches(const InterfaceResult& result, bool crystal_reflect
     for (const InterfaceWave& wave : result.waves) {
         if (wave.evanescent || !(wave.power > 0.0)) continue;
         const bool in_crystal = (wave.kind == InterfaceWave::Kind::reflected) == crystal_reflects;
-        out.push_back({in_crystal, in_crystal ? wave.mode : std::string(), wave.direction, wave.ray_direction, wave.power});
+        out.push_back({in_crystal, in_crystal ? wave.mode : std::string(), wave.direction, wave.ray_direction, wave.power, wave.stokes});
     }
     return out;
 }
@@ -121,28 +121,8 @@ std::optional<Eigen::Vector4d> refraction_out_stokes(const Eigen::Vector3d& outw
     return wave->stokes;
 }
 
-std::optional<Eigen::RowVector4d> refraction_in_row(const Eigen::Vector3d& outward, const Eigen::Vector3d& traced, const std::string& traced_mode,
-                                                    const Eigen::Vector3d& branch, const OpticalMedium& outside, const OpticalMedium& crystal) {
-    const std::array<InterfaceResult, 4> results = solve_basis_states(-outward, -branch, outside, crystal);
-    std::array<double, 4> power{};
-    for (std::size_t k = 0; k < 4; ++k) {
-        const InterfaceWave* wave = find_wave(results[k], InterfaceWave::Kind::transmitted, -traced, &traced_mode);
-        if (!wave) return std::nullopt;
-        power[k] = wave->power;
-    }
-    return Eigen::RowVector4d(power[0], power[1] - power[0], power[2] - power[0], power[3] - power[0]);
-}
-
-std::optional<double> internal_reflection_power(const Eigen::Vector3d& outward, const Eigen::Vector3d& traced, const std::string& traced_mode,
-                                                const Eigen::Vector3d& branch, const std::string& branch_mode, const OpticalMedium& outside,
-                                                const OpticalMedium& crystal) {
-    InterfaceIncidence incidence;
-    incidence.direction = -branch;
-    incidence.mode = branch_mode;
-    const InterfaceResult result = solve_interface(outward, incidence, crystal, outside);
-    const InterfaceWave* wave = find_wave(result, InterfaceWave::Kind::reflected, -traced, &traced_mode);
-    if (!wave) return std::nullopt;
-    return wave->power;
+Eigen::RowVector4d refraction_in_row(const Branch& branch) {
+    return 0.5 * Eigen::RowVector4d(branch.stokes[0], branch.stokes[1], -branch.stokes[2], -branch.stokes[3]);
 }
 
 }  // namespace petroscope::detail

@@ -25,9 +25,9 @@ Eigen::Vector3d s_basis(const Eigen::Vector3d& normal, const Eigen::Vector3d& k)
 Eigen::Matrix4d stokes_frame_change(const Eigen::Vector3d& s_from, const Eigen::Vector3d& s_to, const Eigen::Vector3d& k);
 
 /// Near grazing incidence inside a crystal a wave's ray and its wave normal can lie on opposite sides of
-/// a face (walk-off): a ray that reaches the face with a wave normal pointing away from it, or a
-/// reflected mode whose wave normal points out. The interface model takes an incident wave by its wave
-/// normal, so these cannot be solved; the tracer ends such paths and counts them.
+/// a face (walk-off): the ray reaches the face while the wave normal points away from it. The interface
+/// model takes an incident wave by its wave normal, so this cannot be solved; the tracer ends such paths
+/// and counts them.
 inline bool walks_off(const Eigen::Vector3d& wave_normal_toward_face, const Eigen::Vector3d& outward) {
     return !(wave_normal_toward_face.dot(outward) > 0.0);
 }
@@ -39,6 +39,7 @@ struct Branch {
     Eigen::Vector3d wave_normal;       // unit, along the traced (backward) direction
     Eigen::Vector3d ray;               // unit ray (Poynting) direction of the traced path
     double power = 0.0;                // of the reversed problem, as a selection weight
+    Eigen::Vector4d stokes = Eigen::Vector4d::Zero();  // of the reversed problem's wave, its (s, p) basis
 };
 
 /// The traced path arrives in the surrounding medium (index `n_outside`) along `direction` at a face
@@ -63,15 +64,10 @@ std::optional<Eigen::Matrix4d> reflection_mueller(const Eigen::Vector3d& outward
 /// per unit incident power, basis s_basis(outward, −traced).
 std::optional<Eigen::Vector4d> refraction_out_stokes(const Eigen::Vector3d& outward, const Eigen::Vector3d& traced, const Eigen::Vector3d& branch,
                                                      const std::string& branch_mode, const OpticalMedium& outside, const OpticalMedium& crystal);
-/// Outside light (along −branch, basis s_basis(−outward, −branch)) → crystal mode `traced_mode` along
-/// −traced: the row q with power = q·S.
-std::optional<Eigen::RowVector4d> refraction_in_row(const Eigen::Vector3d& outward, const Eigen::Vector3d& traced, const std::string& traced_mode,
-                                                    const Eigen::Vector3d& branch, const OpticalMedium& outside, const OpticalMedium& crystal);
-/// Crystal mode `branch_mode` (along −branch) reflected inside into mode `traced_mode` along −traced:
-/// the power per unit incident power. The branch's wave normal must point into the crystal (branch ·
-/// outward < 0; see walks_off).
-std::optional<double> internal_reflection_power(const Eigen::Vector3d& outward, const Eigen::Vector3d& traced, const std::string& traced_mode,
-                                                const Eigen::Vector3d& branch, const std::string& branch_mode, const OpticalMedium& outside,
-                                                const OpticalMedium& crystal);
+/// Outside light (along −branch, basis s_basis(−outward, −branch)) → crystal mode along −traced, from
+/// the reversed problem's branch of `branches_from_inside` by reciprocity (lossless media; Born & Wolf
+/// §1.5, Potton 2004, Rep. Prog. Phys. 67, 717): the row q with power = q·S is ½(t0, t1, −t2, −t3), t the
+/// branch's Stokes vector (its basis has the same ŝ and the opposite p̂). Tested against the forward solve.
+Eigen::RowVector4d refraction_in_row(const Branch& branch);
 
 }  // namespace petroscope::detail

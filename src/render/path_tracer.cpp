@@ -243,18 +243,15 @@ public:
             if (branches.empty()) return Contribution::Zero();
             const auto [chosen, probability] = choose(branches, random.uniform());
             const Branch& b = branches[chosen];
+            // Reciprocity (face_transfer.hpp): the forward transfers onto the traced mode are the reversed
+            // problem's own, so no second solve is needed here.
             if (b.in_crystal) {
-                if (detail::walks_off(-b.wave_normal, outward)) return walked_off(statistics);
-                const std::optional<double> power = detail::internal_reflection_power(outward, wave_normal, mode, b.wave_normal, b.mode, air, medium);
-                if (!power) return inconsistent(statistics);
-                column *= *power / probability;
+                column *= b.power / probability;
                 mode = b.mode;
                 wave_normal = b.wave_normal;
                 d = b.ray;
             } else {
-                const std::optional<Eigen::RowVector4d> row = detail::refraction_in_row(outward, wave_normal, mode, b.wave_normal, air, medium);
-                if (!row) return inconsistent(statistics);
-                mueller = column * *row / probability;
+                mueller = column * detail::refraction_in_row(b) / probability;
                 s_hat = detail::s_basis(-outward, -b.wave_normal);
                 d = b.ray;
                 crystal = -1;
