@@ -153,115 +153,145 @@ public:
     /// 1/pdf.
     Contribution trace(const Eigen::Vector3d& camera_position, const Eigen::Vector3d& direction, const Eigen::Vector3d& camera_s,
                        std::size_t index, Random& random, RenderStatistics& statistics) const {
-        const double wavelength_nm = spectrum_.wavelengths_nm[index];
-        bool dispersed = false;
-        const OpticalMedium air = OpticalMedium::isotropic(1.0);
-        // In air: camera Stokes = mueller · S, S in the basis (s_hat, s_hat × k) of the light travelling
-        // along k = −d. The camera's (ŝ, p̂) has p̂ = −up: S2 and S3 change sign to the (right, up) frame.
-        Eigen::Matrix4d mueller = Eigen::Vector4d(1, 1, -1, -1).asDiagonal();
-        Eigen::Vector3d s_hat = camera_s;
-        Eigen::Vector3d d = direction;
-        const std::optional<double> entry = box_entry(scene_.box, camera_position, d);
+        const std::optional<double> entry = box_entry(scene_.box, camera_position, direction);
         if (!entry) return Contribution::Zero();
-        Eigen::Vector3d position = camera_position + *entry * d;
-        // In a crystal: camera Stokes = column · P, P the power of the mode travelling along −N.
+        PathState path;
+        path.position = camera_position + *entry * direction;
+        path.d = direction;
+        // The camera's (ŝ, p̂) has p̂ = −up: S2 and S3 change sign to the (right, up) frame.
+        path.mueller = Eigen::Vector4d(1, 1, -1, -1).asDiagonal();
+        path.s_hat = camera_s;
+        return follow(path, index, random, statistics);
+    }
+
+private:
+    /// A path being traced backward. In air: camera Stokes = mueller · S, S in the basis (s_hat,
+    /// s_hat × k) of the light travelling along k = −d. In a crystal: camera Stokes = column · P, P the
+    /// power of the mode `mode` travelling along −wave_normal.
+    struct PathState {
+        Eigen::Vector3d position, d;
+        Eigen::Matrix4d mueller = Eigen::Matrix4d::Identity();
+        Eigen::Vector3d s_hat;
         Eigen::Vector4d column = Eigen::Vector4d::Zero();
         int crystal = -1;
         std::string mode;
         Eigen::Vector3d wave_normal = Eigen::Vector3d::Zero();
-        OpticalMedium medium;
-        for (int depth = 0;; ++depth) {
-            if (depth >= settings_.max_depth) {
+        int depth = 0;  // crystal-face interactions so far
+    };
+
+    /// Follows `path` to a wall. At the first `split_depth` interactions every branch is followed with
+    /// its full transfer; later one is chosen by power.
+    Contribution follow(PathState path, std::size_t index, Random& random, RenderStatistics& statistics) const {
+        const double wavelength_nm = spectrum_.wavelengths_nm[index];
+        const OpticalMedium air = OpticalMedium::isotropic(1.0);
+        for (;; ++path.depth) {
+            if (path.depth >= settings_.max_depth) {
                 ++statistics.depth_limited;
                 return Contribution::Zero();
             }
-            if (depth >= settings_.roulette_depth) {
-                const double throughput = crystal < 0 ? std::abs(mueller(0, 0)) : std::abs(column[0]);
+            if (path.depth >= settings_.roulette_depth) {
+                const double throughput = path.crystal < 0 ? std::abs(path.mueller(0, 0)) : std::abs(path.column[0]);
                 const double survive = std::min(1.0, throughput);
                 if (random.uniform() >= survive) {
                     ++statistics.roulette_killed;
                     return Contribution::Zero();
                 }
-                if (crystal < 0) mueller /= survive; else column /= survive;
+                if (path.crystal < 0) path.mueller /= survive; else path.column /= survive;
             }
-            if (crystal < 0) {
+            std::vector<Branch> branches;
+            Eigen::Vector3d outward;
+            const bool from_outside = path.crystal < 0;
+            int hit_crystal = path.crystal;
+            if (from_outside) {
                 // Air: the nearest crystal face ahead, or the wall.
                 double nearest = std::numeric_limits<double>::infinity();
-                int face = -1, hit_crystal = -1;
+                int face = -1;
                 for (std::size_t c = 0; c < scene_.crystals.size(); ++c) {
-                    const std::optional<PolyhedronHit> hit = intersect(scene_.crystals[c].shape, position, d);
+                    const std::optional<PolyhedronHit> hit = intersect(scene_.crystals[c].shape, path.position, path.d);
                     if (hit && hit->t_enter > epsilon_mm_ && hit->t_enter < nearest) {
                         nearest = hit->t_enter;
                         face = hit->face_enter;
                         hit_crystal = static_cast<int>(c);
                     }
                 }
-                const auto [t_wall, wall] = box_exit(scene_.box, position, d);
+                const auto [t_wall, wall] = box_exit(scene_.box, path.position, path.d);
                 if (hit_crystal < 0 || t_wall < nearest) {
-                    const auto [emitter, scale] = wall_spectrum(scene_.box, wall, position + t_wall * d);
+                    const auto [emitter, scale] = wall_spectrum(scene_.box, wall, path.position + t_wall * path.d);
                     if (!emitter) return Contribution::Zero();
-                    const Eigen::Vector3d xyz = dispersed ? Eigen::Vector3d((*emitter)(wavelength_nm) / probability_[index] * spectrum_.weights[index])
-                                                          : colour_.at(emitter);
-                    return mueller.col(0) * (scale * xyz).transpose();
+                    const Eigen::Vector3d xyz = path.depth > 0 ? Eigen::Vector3d((*emitter)(wavelength_nm) / probability_[index] * spectrum_.weights[index])
+                                                               : colour_.at(emitter);
+                    return path.mueller.col(0) * (scale * xyz).transpose();
                 }
-                ++statistics.crystal_interactions;
-                dispersed = true;
-                const SceneCrystal& target = scene_.crystals[static_cast<std::size_t>(hit_crystal)];
-                medium = crystal_medium(target, wavelength_nm);
-                position += nearest * d;
-                const Eigen::Vector3d outward = target.shape.face_normals[static_cast<std::size_t>(face)];
-                const std::vector<Branch> branches = detail::branches_from_outside(outward, d, air, medium);
-                if (branches.empty()) return Contribution::Zero();
-                const auto [chosen, probability] = choose(branches, random.uniform());
-                const Branch& b = branches[chosen];
-                if (!b.in_crystal) {
-                    const std::optional<Eigen::Matrix4d> reflection = detail::reflection_mueller(outward, d, b.wave_normal, air, medium);
-                    if (!reflection) return inconsistent(statistics);
-                    mueller = mueller * detail::stokes_frame_change(detail::s_basis(-outward, -d), s_hat, -d) * *reflection / probability;
-                    s_hat = detail::s_basis(-outward, -b.wave_normal);
-                    d = b.ray;
-                } else {
-                    const std::optional<Eigen::Vector4d> out = detail::refraction_out_stokes(outward, d, b.wave_normal, b.mode, air, medium);
-                    if (!out) return inconsistent(statistics);
-                    column = mueller * detail::stokes_frame_change(detail::s_basis(outward, -d), s_hat, -d) * *out / probability;
-                    crystal = hit_crystal;
-                    mode = b.mode;
-                    wave_normal = b.wave_normal;
-                    d = b.ray;
-                }
-                continue;
-            }
-            // Inside a crystal: the face the ray leaves through.
-            const SceneCrystal& here = scene_.crystals[static_cast<std::size_t>(crystal)];
-            const std::optional<std::pair<double, int>> exit = exit_from_inside(here.shape, position, d);
-            if (!exit) return inconsistent(statistics);
-            ++statistics.crystal_interactions;
-            position += exit->first * d;
-            const Eigen::Vector3d outward = here.shape.face_normals[static_cast<std::size_t>(exit->second)];
-            if (detail::walks_off(wave_normal, outward)) return walked_off(statistics);
-            const std::vector<Branch> branches = detail::branches_from_inside(outward, wave_normal, mode, air, medium);
-            if (branches.empty()) return Contribution::Zero();
-            const auto [chosen, probability] = choose(branches, random.uniform());
-            const Branch& b = branches[chosen];
-            // Reciprocity (face_transfer.hpp): the forward transfers onto the traced mode are the reversed
-            // problem's own, so no second solve is needed here.
-            if (b.in_crystal) {
-                column *= b.power / probability;
-                mode = b.mode;
-                wave_normal = b.wave_normal;
-                d = b.ray;
+                path.position += nearest * path.d;
+                outward = scene_.crystals[static_cast<std::size_t>(hit_crystal)].shape.face_normals[static_cast<std::size_t>(face)];
+                branches = detail::branches_from_outside(outward, path.d, air, crystal_medium(hit_crystal, wavelength_nm));
             } else {
-                mueller = column * detail::refraction_in_row(b) / probability;
-                s_hat = detail::s_basis(-outward, -b.wave_normal);
-                d = b.ray;
-                crystal = -1;
+                // Inside a crystal: the face the ray leaves through.
+                const ConvexPolyhedron& shape = scene_.crystals[static_cast<std::size_t>(path.crystal)].shape;
+                const std::optional<std::pair<double, int>> exit = exit_from_inside(shape, path.position, path.d);
+                if (!exit) return inconsistent(statistics);
+                path.position += exit->first * path.d;
+                outward = shape.face_normals[static_cast<std::size_t>(exit->second)];
+                if (detail::walks_off(path.wave_normal, outward)) return walked_off(statistics);
+                branches = detail::branches_from_inside(outward, path.wave_normal, path.mode, air, crystal_medium(path.crystal, wavelength_nm));
             }
+            ++statistics.crystal_interactions;
+            if (branches.empty()) return Contribution::Zero();
+            if (path.depth < settings_.split_depth) {
+                Contribution sum = Contribution::Zero();
+                for (const Branch& b : branches) {
+                    PathState next = path;
+                    if (!take(next, b, 1.0, from_outside, hit_crystal, outward, wavelength_nm)) {
+                        ++statistics.inconsistent;
+                        continue;
+                    }
+                    ++next.depth;
+                    sum += follow(next, index, random, statistics);
+                }
+                return sum;
+            }
+            const auto [chosen, probability] = choose(branches, random.uniform());
+            if (!take(path, branches[chosen], probability, from_outside, hit_crystal, outward, wavelength_nm)) return inconsistent(statistics);
         }
     }
 
-private:
-    static OpticalMedium crystal_medium(const SceneCrystal& crystal, double wavelength_nm) {
-        return OpticalMedium{crystal.principal_n(wavelength_nm).cast<std::complex<double>>(), crystal.axes};
+    /// Moves `path` onto branch `b` (taken with `probability`) at the face with `outward` normal of crystal
+    /// `crystal`; false when the forward solution has no wave matching the traced one.
+    bool take(PathState& path, const Branch& b, double probability, bool from_outside, int crystal, const Eigen::Vector3d& outward,
+              double wavelength_nm) const {
+        if (from_outside) {
+            const OpticalMedium air = OpticalMedium::isotropic(1.0), medium = crystal_medium(crystal, wavelength_nm);
+            if (!b.in_crystal) {
+                const std::optional<Eigen::Matrix4d> reflection = detail::reflection_mueller(outward, path.d, b.wave_normal, air, medium);
+                if (!reflection) return false;
+                path.mueller = path.mueller * detail::stokes_frame_change(detail::s_basis(-outward, -path.d), path.s_hat, -path.d) * *reflection / probability;
+                path.s_hat = detail::s_basis(-outward, -b.wave_normal);
+            } else {
+                const std::optional<Eigen::Vector4d> out = detail::refraction_out_stokes(outward, path.d, b.wave_normal, b.mode, air, medium);
+                if (!out) return false;
+                path.column = path.mueller * detail::stokes_frame_change(detail::s_basis(outward, -path.d), path.s_hat, -path.d) * *out / probability;
+                path.crystal = crystal;
+                path.mode = b.mode;
+                path.wave_normal = b.wave_normal;
+            }
+        } else if (b.in_crystal) {
+            // Reciprocity (face_transfer.hpp): the forward transfers onto the traced mode are the reversed
+            // problem's own, so no second solve is needed inside.
+            path.column *= b.power / probability;
+            path.mode = b.mode;
+            path.wave_normal = b.wave_normal;
+        } else {
+            path.mueller = path.column * detail::refraction_in_row(b) / probability;
+            path.s_hat = detail::s_basis(-outward, -b.wave_normal);
+            path.crystal = -1;
+        }
+        path.d = b.ray;
+        return true;
+    }
+
+    OpticalMedium crystal_medium(int crystal, double wavelength_nm) const {
+        const SceneCrystal& c = scene_.crystals[static_cast<std::size_t>(crystal)];
+        return OpticalMedium{c.principal_n(wavelength_nm).cast<std::complex<double>>(), c.axes};
     }
     static Contribution walked_off(RenderStatistics& statistics) {
         ++statistics.walked_off;

@@ -19,6 +19,10 @@ struct RenderSettings {
     int samples_per_pixel = 64;
     int max_depth = 15;  // interactions with crystal faces along a path
     int roulette_depth = 3;  // Russian roulette from this depth on
+    /// At the first `split_depth` interactions of a path every branch is followed (splitting: no noise
+    /// from choosing between the doubled images or between reflection and refraction there); later ones
+    /// choose one branch by power.
+    int split_depth = 1;
     std::uint64_t seed = 1;
 };
 
