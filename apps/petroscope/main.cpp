@@ -4,6 +4,7 @@
 #include "frame_command.hpp"
 
 #include "petroscope/core/error.hpp"
+#include "petroscope/io/atomic_file.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -11,6 +12,7 @@
 #include <iostream>
 
 int main(int argc, char** argv) {
+    petroscope::install_interrupt_cleanup();
     CLI::App app{
         "petroscope: a physically exact simulator of the petrographic (polarizing) microscope.\n"
         "Interference figures are computed per wavelength from the exact eigenmodes of the crystal.\n\n"

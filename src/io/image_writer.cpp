@@ -96,6 +96,14 @@ void write_image(const Image& linear_rgb, const std::filesystem::path& path, Ima
     }
     ok = output->close() && ok;
     if (!ok) throw InputError("cannot write " + path.string() + ": " + output->geterror());
+    // The PNG writer does not report every failed write (a full disk, a file size limit): read the file
+    // back whole, which fails on a truncated file.
+    const auto check = OIIO::ImageInput::open(path.string());
+    std::vector<float> back(linear_rgb.pixels.size());
+    if (!check || check->spec().width != linear_rgb.width || check->spec().height != linear_rgb.height ||
+        !check->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, back.data())) {
+        throw InputError("cannot write " + path.string() + ": the file did not come out whole (is the disk full, or a file size limit set?)");
+    }
 }
 
 Image read_image(const std::filesystem::path& path) {

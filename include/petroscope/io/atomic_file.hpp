@@ -22,9 +22,16 @@ public:
 private:
     struct Entry {
         std::filesystem::path temporary, destination;
+        int slot = -1;  // in the interrupt registry (install_interrupt_cleanup)
     };
     std::vector<Entry> entries_;
     bool committed_ = false;
 };
+
+/// Makes interruption leave nothing half-written: SIGINT and SIGTERM remove every pending temporary file
+/// of every PendingOutputs, print "petroscope: interrupted (signal N); no output was written" and end the
+/// program with status 128 + N. SIGXFSZ (a file size limit) is ignored, so that a write beyond the limit
+/// fails with an error the writers report, like a full disk. Call once, early in main.
+void install_interrupt_cleanup();
 
 }  // namespace petroscope
