@@ -146,6 +146,9 @@ SceneCrystal read_crystal(const JsonValue& value, const MineralCatalog& catalog,
     } catch (const InputError& e) {
         throw mineral_name.error(e.what());
     }
+    if (mineral->absorbing()) {
+        throw mineral_name.error(mineral->name + " absorbs light; scenes take transparent crystals only (the renderer has no attenuation inside crystals)");
+    }
     crystal.mineral = mineral->name;
     crystal.principal_n = [mineral](double wavelength_nm) { return mineral->principal_n(wavelength_nm); };
     if (value.has("calcite_rhomb") == value.has("vertices_mm")) throw value.error("expected exactly one of calcite_rhomb and vertices_mm (with faces)");

@@ -6,6 +6,8 @@
 
 #include <Eigen/Geometry>
 
+#include <random>
+
 namespace petroscope {
 namespace {
 
@@ -69,6 +71,47 @@ TEST(PathTracer, FurnaceCrystalIsInvisibleAndLightStaysUnpolarized) {
     EXPECT_GT(crystal_pixels, 100);
     EXPECT_LE(std::abs(mean_deviation), 3.0 * mean_sigma);
     EXPECT_LE(outside_3_sigma, 10);  // 0.27% of 1728 values expected beyond 3σ by chance: about 4.7
+}
+
+// Random crystals (every mineral of the catalog, random shapes and orientations, wavelengths over the
+// grid) in a glowing box: every pixel finite, S0 ≥ 0 and the degree of polarization at most 1.
+TEST(PathTracer, RandomScenesGiveFiniteAndPhysicalStokesVectors) {
+    std::mt19937_64 rng(9);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const auto& minerals = testing::render_minerals().minerals();
+    int pixels = 0;
+    for (int trial = 0; trial < 150; ++trial) {
+        Scene scene = furnace_scene(6);
+        scene.box.walls[static_cast<std::size_t>(Wall::bottom)].uniform = SigmoidSpectrum::polynomial({30.0 * unit(rng) - 15.0, 10.0 * unit(rng) - 5.0, 2.0 * unit(rng) - 1.0});
+        const Mineral& mineral = minerals[static_cast<std::size_t>(rng() % minerals.size())];
+        const CalciteRhomb rhomb = calcite_rhomb({2.0 + 13.0 * unit(rng), 2.0 + 13.0 * unit(rng), 1e-3 + 15.0 * unit(rng)});
+        const Eigen::Matrix3d turn = Eigen::Quaterniond(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5).normalized().toRotationMatrix();
+        Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+        for (const auto& v : rhomb.polyhedron.vertices) centroid += turn * v / 8.0;
+        std::vector<Eigen::Vector3d> vertices;
+        for (const auto& v : rhomb.polyhedron.vertices) vertices.push_back(turn * v - centroid + Eigen::Vector3d(0, 0, 30));
+        SceneCrystal crystal;
+        crystal.mineral = mineral.name;
+        crystal.principal_n = [&mineral](double nm) { return mineral.principal_n(nm); };
+        crystal.axes = Eigen::Quaterniond(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5).normalized().toRotationMatrix();
+        crystal.shape = make_convex_polyhedron(vertices, rhomb.polyhedron.faces);
+        scene.crystals = {crystal};
+        scene.camera.sensor_distance_mm = 40.0;
+        RenderSettings settings;
+        settings.samples_per_pixel = 4;
+        settings.seed = static_cast<std::uint64_t>(trial);
+        const RenderResult result = render_scene(scene, testing::d65_spectrum(), settings);
+        for (int y = 0; y < 6; ++y) {
+            for (int x = 0; x < 6; ++x) {
+                ++pixels;
+                const Eigen::Vector4d stokes(result.stokes_xyz.at(x, y, 1), result.stokes_xyz.at(x, y, 4), result.stokes_xyz.at(x, y, 7), result.stokes_xyz.at(x, y, 10));
+                ASSERT_TRUE(stokes.allFinite()) << mineral.name << " trial " << trial;
+                EXPECT_GE(stokes[0], -1e-12) << mineral.name << " trial " << trial;
+                EXPECT_LE(stokes.tail<3>().norm(), stokes[0] * (1.0 + 1e-9) + 1e-12) << mineral.name << " trial " << trial;
+            }
+        }
+    }
+    EXPECT_EQ(pixels, 150 * 36);
 }
 
 }  // namespace
