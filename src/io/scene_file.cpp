@@ -19,6 +19,8 @@ namespace petroscope {
 namespace {
 
 constexpr std::array<const char*, kWallCount> kWallNames{"left", "right", "front", "back", "bottom", "top"};
+// Textures up to 8192² texels: 256 MiB of palette indices.
+constexpr int kMaxTexturePx = 8192;
 
 /// Sigmoid spectra of sRGB-encoded colours, fitted once per 8-bit colour.
 class SpectrumPalette {
@@ -79,6 +81,10 @@ double positive(const JsonValue& value) {
 
 WallEmission texture_wall(const Image& texture, const JsonValue& where, const RenderSpectrum& spectrum) {
     if (texture.channels < 3) throw where.error("expected a colour (RGB) texture");
+    if (texture.width > kMaxTexturePx || texture.height > kMaxTexturePx) {
+        throw where.error("the texture is " + std::to_string(texture.width) + " x " + std::to_string(texture.height) + " px; at most " +
+                          std::to_string(kMaxTexturePx) + " per side");
+    }
     WallEmission wall;
     wall.kind = WallEmission::Kind::texture;
     wall.texture_width = texture.width;
@@ -127,6 +133,10 @@ WallEmission read_wall(const JsonValue& value, const std::filesystem::path& fold
             const int border = grid.has("border_cells") ? whole_number(grid["border_cells"], 0, 100) : 3;
             const int columns = whole_number(cells.at(0), 2 * border + 1, 1000), rows = whole_number(cells.at(1), 2 * border + 1, 1000);
             const int cell_px = grid.has("cell_px") ? whole_number(grid["cell_px"], 1, 256) : 16;
+            if (columns * cell_px > kMaxTexturePx || rows * cell_px > kMaxTexturePx) {
+                throw grid.error("the texture would be " + std::to_string(columns * cell_px) + " x " + std::to_string(rows * cell_px) +
+                                 " px; at most " + std::to_string(kMaxTexturePx) + " per side");
+            }
             const double grey = grid.has("border_grey") ? grid["border_grey"].number() : 0.5;
             if (!(grey >= 0.0 && grey <= 1.0)) throw grid["border_grey"].error("expected a value from 0 to 1");
             wall = texture_wall(colour_grid_texture(columns, rows, border, cell_px, grey), grid, spectrum);

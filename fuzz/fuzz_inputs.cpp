@@ -1,0 +1,101 @@
+#include "fuzz_inputs.hpp"
+
+#include "petroscope/core/error.hpp"
+#include "petroscope/core/text.hpp"
+#include "petroscope/core/units.hpp"
+#include "petroscope/io/data_files.hpp"
+#include "petroscope/io/interface_case.hpp"
+#include "petroscope/io/json_reader.hpp"
+#include "petroscope/io/label_image.hpp"
+#include "petroscope/io/scene_file.hpp"
+#include "petroscope/io/sweep_plan.hpp"
+#include "petroscope/io/thin_section_file.hpp"
+#include "petroscope/minerals/mineral_parser.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <unistd.h>
+
+namespace petroscope::fuzz {
+namespace {
+
+const MineralCatalog& catalog() {
+    static const MineralCatalog minerals = load_mineral_catalog(std::filesystem::path(PETROSCOPE_SOURCE_DIR) / "minerals");
+    return minerals;
+}
+
+/// A scratch folder of this process, with a 4 × 4 grain map of labels 1 … 3 (grains.png) for thin sections.
+const std::filesystem::path& scratch() {
+    static const std::filesystem::path folder = [] {
+        const std::filesystem::path base = std::filesystem::exists("/dev/shm") ? "/dev/shm" : std::filesystem::temp_directory_path();
+        const std::filesystem::path path = base / ("petroscope-fuzz-" + std::to_string(::getpid()));
+        std::filesystem::create_directories(path);
+        write_label_png({1, 1, 2, 2, 1, 1, 2, 2, 3, 3, 3, 3, 3, 3, 3, 3}, 4, 4, path / "grains.png");
+        return path;
+    }();
+    return folder;
+}
+
+std::filesystem::path write_input(const std::string& name, std::string_view input) {
+    const std::filesystem::path path = scratch() / name;
+    std::ofstream(path, std::ios::binary | std::ios::trunc).write(input.data(), static_cast<std::streamsize>(input.size()));
+    return path;
+}
+
+void values(std::string_view input) {
+    if (input.empty()) return;
+    const std::string_view text = input.substr(1);
+    switch (static_cast<unsigned char>(input[0]) % 5) {
+    case 0:
+        parse_length_um(text);
+        break;
+    case 1:
+        parse_wavelength_nm(text);
+        break;
+    case 2:
+        parse_sweep_parameter(text, 10000);
+        break;
+    case 3:
+        parse_sweep_shard(text);
+        break;
+    default:
+        parse_double(text);
+        split(text, ',');
+        break;
+    }
+}
+
+void dispatch(const std::string& name, std::string_view input) {
+    if (name == "mineral") {
+        parse_mineral(input, "fuzz.txt");
+    } else if (name == "thin_section") {
+        read_thin_section(write_input("section.txt", input), catalog());
+    } else if (name == "interface_case") {
+        parse_interface_case(parse_json_text(std::string(input), "case.json"), "case.json", catalog());
+    } else if (name == "scene") {
+        static const RenderSpectrum spectrum = render_spectrum(load_cie_1931_observer(), load_light_source("D65"));
+        read_scene(write_input("scene.json", input), catalog(), spectrum);
+    } else if (name == "values") {
+        values(input);
+    } else {
+        throw std::invalid_argument("unknown fuzz target " + name);
+    }
+}
+
+}  // namespace
+
+const std::vector<std::string>& target_names() {
+    static const std::vector<std::string> names{"mineral", "thin_section", "interface_case", "scene", "values"};
+    return names;
+}
+
+void run_target(const std::string& name, std::string_view input) {
+    try {
+        dispatch(name, input);
+    } catch (const InputError&) {
+        // Rejected with a message: what bad input should get.
+    }
+}
+
+}  // namespace petroscope::fuzz
