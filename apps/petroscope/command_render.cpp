@@ -37,7 +37,14 @@ private:
     bool no_polarizer_ = false;
     long long seed_ = 1;
     double exposure_ = 1.0;
+    bool allow_large_ = false;
 };
+
+// Without --allow-large: at most 4096² pixels (the result holds 16 floats per pixel: 1.1 GB at the limit)
+// and 65536 samples per pixel. With it: the scene's limit of 16384 px per side (17 GB for 16384²) and
+// 10⁶ samples.
+constexpr long long kLargePixels = 4096LL * 4096LL;
+constexpr int kLargeSamples = 65536;
 
 void RenderOptions::add_options(CLI::App* command) {
     command->add_option("--scene", scene_, "Scene file (JSON, docs/render.md)")->required();
@@ -49,6 +56,9 @@ void RenderOptions::add_options(CLI::App* command) {
     command->add_flag("--no-polarizer", no_polarizer_, "Ignore the scene's camera polarizer");
     command->add_option("--seed", seed_, "Random seed (the image does not depend on the number of threads)")->capture_default_str();
     command->add_option("--exposure", exposure_, "Multiplies the image (1: a wall of white texels is white)")->capture_default_str();
+    command->add_flag("--allow-large", allow_large_,
+                      "Allow images above 4096x4096 px (16 floats per pixel: 1.1 GB at 4096x4096, 17 GB at the scene limit 16384x16384) and "
+                      "more than 65536 samples per pixel");
 }
 
 /// FNV-1a 64 (Fowler, Noll & Vo) of the scene file's bytes: identifies the scene in the sidecar.
@@ -68,6 +78,15 @@ PreparedFrame RenderOptions::prepare(FrameContext& context) const {
     if (!(exposure_ > 0.0) || !std::isfinite(exposure_)) throw InputError("--exposure must be > 0");
     const auto spectrum = std::make_shared<RenderSpectrum>(render_spectrum(load_cie_1931_observer(), load_light_source("D65")));
     const auto scene = std::make_shared<Scene>(read_scene(scene_, context.catalog(), *spectrum));
+    const long long pixels = static_cast<long long>(scene->camera.width_px) * scene->camera.height_px;
+    if (!allow_large_ && pixels > kLargePixels) {
+        throw InputError(scene_ + ": camera: " + std::to_string(scene->camera.width_px) + " x " + std::to_string(scene->camera.height_px) +
+                         " px is above 4096 x 4096 (it needs " + format_number(std::round(pixels * 64.0 / 1e9 * 10.0) / 10.0) +
+                         " GB); add --allow-large to render it anyway");
+    }
+    if (!allow_large_ && spp_ > kLargeSamples) {
+        throw InputError("--spp " + std::to_string(spp_) + " is above 65536; add --allow-large to render it anyway");
+    }
     if (polarizer_deg_) {
         scene->camera.has_polarizer = true;
         scene->camera.polarizer_deg = *polarizer_deg_;

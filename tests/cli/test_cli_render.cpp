@@ -13,11 +13,11 @@ namespace {
 class RenderCli : public testing::CliFixture {
 protected:
     /// The paper's scene with the camera's image size reduced to `width` × `height`.
-    std::filesystem::path small_scene(int width, int height) {
+    std::filesystem::path small_scene(int width, int height, const std::string& name = "scene.json") {
         nlohmann::json scene = nlohmann::json::parse(testing::read_text(std::filesystem::path(PETROSCOPE_SOURCE_DIR) / "scenes" / "calcite-box.json"));
         scene["camera"]["width_px"] = width;
         scene["camera"]["height_px"] = height;
-        const std::filesystem::path path = scratch() / "scene.json";
+        const std::filesystem::path path = scratch() / name;
         testing::write_text(path, scene.dump(2));
         return path;
     }
@@ -49,6 +49,8 @@ TEST_F(RenderCli, RejectsBadInput) {
     expect_rejected("render --scene " + scene + " --depth 0" + output, {"--depth 0"});
     expect_rejected("render --scene " + scene + " --polarizer-deg 10 --no-polarizer" + output, {"exclude each other"});
     expect_rejected("render --scene " + testing::quoted(scratch() / "none.json") + output, {"none.json"});
+    expect_rejected("render --scene " + testing::quoted(small_scene(5000, 4000, "large.json")) + output, {"5000 x 4000", "above 4096 x 4096", "--allow-large"});
+    expect_rejected("render --scene " + scene + " --spp 100000" + output, {"--spp 100000", "--allow-large"});
     testing::write_text(scratch() / "bad.json", R"({"box": {"lower_mm": [0, 0, 0], "upper_mm": [1, 1, 1]}, "camera": {}})");
     expect_rejected("render --scene " + testing::quoted(scratch() / "bad.json") + output, {"bad.json", "camera.position_mm", "missing"});
 }
