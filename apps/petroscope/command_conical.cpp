@@ -44,6 +44,7 @@ private:
     double tilt_deg_ = 0.0;
     std::string screen_distance_ = "50mm";
     long long rays_ = 200000;
+    bool allow_large_ = false;
     int size_px_ = 1024;
 };
 
@@ -145,7 +146,10 @@ PreparedFrame ConicalOptions::prepare(FrameContext& context) const {
     settings.filter_um = positive_length_um("--filter", filter_);
     settings.screen_distance_um = positive_length_um("--screen-distance", screen_distance_);
     settings.stokes = stokes;
+    // Every ray's two landings are kept for the ring measurement (48 bytes a ray, twice while the threads'
+    // lists are merged): about 1 GB at 10⁷ rays, 10 GB at 10⁸.
     if (rays_ < 1 || rays_ > 100000000) throw InputError("--rays must be between 1 and 1e8");
+    if (rays_ > 10000000 && !allow_large_) throw InputError("--rays " + std::to_string(rays_) + " is above 1e7 (about 1 GB per 1e7 rays); add --allow-large to trace them anyway");
     settings.rays = rays_;
     settings.size_px = size_px_;
     sidecar["pinhole_um"] = settings.pinhole_radius_um;
@@ -190,7 +194,8 @@ void ConicalOptions::add_options(CLI::App* command) {
     command->add_option("--rotate-deg", rotate_deg_, "Ray mode: turn the slab about its optic axis")->capture_default_str();
     command->add_option("--tilt-deg", tilt_deg_, "Ray mode: tilt the optic axis away from the slab normal")->capture_default_str();
     command->add_option("--screen-distance", screen_distance_, "Ray mode: screen distance D behind the slab")->capture_default_str()->type_name(length_type);
-    command->add_option("--rays", rays_, "Ray mode: number of rays")->capture_default_str();
+    command->add_option("--rays", rays_, "Ray mode: number of rays (up to 1e7, or 1e8 with --allow-large)")->capture_default_str();
+    command->add_flag("--allow-large", allow_large_, "Ray mode: allow more than 1e7 rays (about 1 GB of memory per 1e7)");
     command->add_option("--size", size_px_, "Image size in pixels (64 to 4096)")->capture_default_str();
 }
 
