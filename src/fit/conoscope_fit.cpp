@@ -10,6 +10,7 @@
 #include <ceres/ceres.h>
 
 #include <algorithm>
+#include <limits>
 #include <map>
 #include <cmath>
 #include <memory>
@@ -149,17 +150,29 @@ double solve_level(const PhotoLevel& level, PhotoParameters& values, const Conos
     return summary.final_cost;
 }
 
-/// The lowest local minima of the cost over thickness at the starting geometry: at each thickness the
-/// camera is taken linear in x^(1/γ) per channel (gain and black level solved exactly), so the search
-/// needs no other unknown. Steps are a fraction of the finest fringe the blurred lattice resolves.
-std::vector<double> thickness_minima(const PhotoLevel& level, const PhotoParameters& start, const ConoscopeFitOptions& options) {
+/// A local minimum of the cost over thickness and its basin: the thicknesses of the neighbouring local
+/// maxima (or the ends of the scan), between which a refinement stays on this minimum.
+struct ThicknessMinimum {
+    double thickness_um, cost, lower_um, upper_um;
+};
+
+/// How a thickness scan chooses its steps: 0.25 rad of phase change of the finest fringe the level
+/// resolves (at the starting geometry, where which fringes carry the cost is not known yet), or of the
+/// fringes weighted by their power in the photo (at a fitted geometry).
+enum class StepRule { finest_resolved_fringe, power_weighted_fringes };
+
+/// The lowest `count` local minima of the cost over thickness at the geometry of `values`: at each
+/// thickness the camera is taken linear in x^(1/γ) per channel (gain and black level solved exactly), so
+/// the scan needs no other unknown.
+std::vector<ThicknessMinimum> thickness_minima(const PhotoLevel& level, const std::vector<Eigen::Vector3d>& rgb_per_transmission,
+                                               const PhotoParameters& values, double min_um, double max_um, int count, StepRule step_rule) {
     std::vector<InterferenceTerms> terms;
     detail::PhaseDerivatives phase;
-    level.evaluator.terms(start, terms);
+    level.evaluator.terms(values, terms);
     level.evaluator.phase_derivatives(terms, phase);
-    const double blur2 = at(start, PhotoParameter::blur_variance_px2) + level.extra_blur_px * level.extra_blur_px;
-    // Fringes are resolved (attenuation above e^−2) while σ²d²|∇Φ|² < 4: the largest phase among those
-    // sets the step, found from the terms sorted by |∇Φ|.
+    const double blur2 = at(values, PhotoParameter::blur_variance_px2) + level.extra_blur_px * level.extra_blur_px;
+    // Fringes are resolved (attenuation above e^−2) while σ²d²|∇Φ|² < 4: the largest phase among those,
+    // found from the terms sorted by |∇Φ|.
     std::vector<std::pair<double, double>> by_gradient;  // (|∇Φ|², |Φ|)
     for (std::size_t k = 0; k < terms.size(); ++k) by_gradient.emplace_back(phase.gradient2[k], std::abs(terms[k].phase_per_um));
     std::sort(by_gradient.begin(), by_gradient.end());
@@ -171,11 +184,26 @@ std::vector<double> thickness_minima(const PhotoLevel& level, const PhotoParamet
         const auto end = std::upper_bound(by_gradient.begin(), by_gradient.end(), std::pair{limit, 1e300});
         return end == by_gradient.begin() ? 0.0 : running_max[static_cast<std::size_t>(end - by_gradient.begin()) - 1];
     };
-    const double gamma = at(start, PhotoParameter::gamma);
+    // The colour each sample would show without fringes, Σ_w rgb_w·mean_w: what the fringes add to it is
+    // the signal whose rate of change sets the step.
+    const std::size_t wavelengths = level.evaluator.wavelength_count();
+    std::vector<Eigen::Vector3d> fringe_free(level.evaluator.sample_count(), Eigen::Vector3d::Zero());
+    for (std::size_t k = 0; k < terms.size(); ++k) fringe_free[k / wavelengths] += rgb_per_transmission[k % wavelengths] * terms[k].mean;
+    const double gamma = at(values, PhotoParameter::gamma);
     std::vector<double> thicknesses, costs;
     detail::LinearSamples linear;
-    for (double t = options.thickness_min_um; t <= options.thickness_max_um;) {
-        level.evaluator.linear(terms, phase, t, blur2, false, linear);
+    const bool weighted = step_rule == StepRule::power_weighted_fringes;
+    for (double t = min_um; t <= max_um;) {
+        level.evaluator.linear(terms, phase, t, blur2, weighted, linear);
+        // The power-weighted rate Φ_eff: the rms rate of change of the fringe signal s = rgb − fringe_free
+        // relative to its rms, Φ_eff² = Σ|∂s/∂d|² / Σ|s|² (for one fringe s = A·cos(Φd): Φ); it weights
+        // each fringe by its power in the photo, after the blur and after high orders wash out to white.
+        double rate2 = 0.0, signal2 = 0.0;
+        for (std::size_t k = 0; k < linear.rgb.size() && weighted; ++k) {
+            rate2 += linear.d_thickness[k].squaredNorm();
+            signal2 += (linear.rgb[k] - fringe_free[k]).squaredNorm();
+        }
+        const double rate_per_um = signal2 > 0.0 ? std::sqrt(rate2 / signal2) : 0.0;
         double cost = 0.0;
         for (int c = 0; c < 3; ++c) {
             // Least squares y ≈ a·z + b with z = max(x, 0)^(1/γ).
@@ -194,20 +222,24 @@ std::vector<double> thickness_minima(const PhotoLevel& level, const PhotoParamet
             cost += vz > 1e-300 ? vy - cov * cov / vz : vy;
         }
         thicknesses.push_back(t);
-        costs.push_back(cost);
-        const double step = std::clamp(0.25 / (resolved_phase_per_um(t) * t + 1e-12), 2e-4, 0.05);
+        costs.push_back(cost / std::max(1, 3 * level.usable_count));
+        const double rate = weighted ? rate_per_um : resolved_phase_per_um(t);
+        const double step = std::clamp(0.25 / (rate * t + 1e-12), 2e-4, 0.05);
         t *= 1.0 + step;
     }
-    std::vector<std::size_t> minima;
+    std::vector<ThicknessMinimum> minima;
     for (std::size_t i = 0; i < costs.size(); ++i) {
         const bool left = i == 0 || costs[i] <= costs[i - 1];
         const bool right = i + 1 == costs.size() || costs[i] <= costs[i + 1];
-        if (left && right) minima.push_back(i);
+        if (!left || !right) continue;
+        std::size_t low = i, high = i;
+        while (low > 0 && costs[low - 1] >= costs[low]) --low;
+        while (high + 1 < costs.size() && costs[high + 1] >= costs[high]) ++high;
+        minima.push_back({thicknesses[i], costs[i], thicknesses[low], thicknesses[high]});
     }
-    std::sort(minima.begin(), minima.end(), [&](std::size_t a, std::size_t b) { return costs[a] < costs[b]; });
-    std::vector<double> result;
-    for (std::size_t k = 0; k < minima.size() && static_cast<int>(k) < options.candidates; ++k) result.push_back(thicknesses[minima[k]]);
-    return result;
+    std::sort(minima.begin(), minima.end(), [](const ThicknessMinimum& a, const ThicknessMinimum& b) { return a.cost < b.cost; });
+    if (static_cast<int>(minima.size()) > count) minima.resize(static_cast<std::size_t>(count));
+    return minima;
 }
 
 struct Statistics {
@@ -376,8 +408,10 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
     if (options.free[index_of(PhotoParameter::field_radius_px)]) at(start, PhotoParameter::field_radius_px) = edge;
     const double sample_radius = 0.85 * std::min(edge, at(start, PhotoParameter::field_radius_px));
 
-    // Three levels: the thickness search, a blurred refinement that finds the geometry, the full photo;
-    // each samples the field on a lattice of about this many pixels.
+    // Four levels: the thickness search at the starting geometry and a refinement that finds the geometry
+    // (both on the photo blurred further, so that they see the figure despite a wrong geometry), a
+    // second thickness scan on the unblurred photo at that geometry, and the full photo; each samples the
+    // field on a lattice of about this many pixels.
     const auto stride = [&](double samples) {
         return std::max(1, static_cast<int>(std::lround(std::sqrt(std::numbers::pi * sample_radius * sample_radius / samples))));
     };
@@ -388,6 +422,7 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
     const int search_stride = stride(2500.0), coarse_stride = stride(5000.0);
     const auto search = level(search_stride, search_stride);
     const auto coarse = level(coarse_stride, 0.75 * coarse_stride);
+    const auto scan = level(coarse_stride, 0.0);
     const auto fine = level(stride(15000.0), 0.0);
     if (fine->usable_count < 0.1 * static_cast<double>(fine->evaluator.sample_count()) || fine->usable_count < 50) {
         throw InputError("the photo is saturated: only " + std::to_string(fine->usable_count) + " of " +
@@ -398,32 +433,68 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
     ConoscopeFitResult result;
     result.pixels_used = fine->usable_count;
     result.pixels_saturated = static_cast<int>(fine->evaluator.sample_count()) - fine->usable_count;
-    std::vector<double> starts{at(start, PhotoParameter::thickness_um)};
-    if (options.free[index_of(PhotoParameter::thickness_um)]) starts = thickness_minima(*search, start, options);
+    const Bounds bounds = parameter_bounds(options, photo);
+    // The thickness range scanned (one thickness when it is fixed), and bounds that keep a refinement of
+    // a minimum in its basin (out to the global bound where the basin reaches the end of the range).
+    const bool thickness_free = options.free[index_of(PhotoParameter::thickness_um)];
+    const double scan_min_um = thickness_free ? options.thickness_min_um : at(start, PhotoParameter::thickness_um);
+    const double scan_max_um = thickness_free ? options.thickness_max_um : at(start, PhotoParameter::thickness_um);
+    const auto basin_bounds = [&](const ThicknessMinimum& minimum) {
+        Bounds basin = bounds;
+        const std::size_t k = index_of(PhotoParameter::thickness_um);
+        if (minimum.lower_um > scan_min_um) basin.lower[k] = minimum.lower_um;
+        if (minimum.upper_um < scan_max_um) basin.upper[k] = minimum.upper_um;
+        return basin;
+    };
+    const std::vector<ThicknessMinimum> starts =
+        thickness_minima(*search, model.rgb_per_transmission, start, scan_min_um, scan_max_um, options.candidates,
+                         StepRule::finest_resolved_fringe);
     if (progress) progress(0.15);
 
-    const Bounds bounds = parameter_bounds(options, photo);
-    // Every minimum is refined on the coarse level (where their costs compare), the best on the full photo.
-    std::vector<PhotoParameters> refined;
+    // Every minimum is refined on the coarse level, for the geometry and the camera. Its thickness is not
+    // held in the basin: at a wrong starting geometry the search's minima need not be the photo's.
+    PhotoParameters geometry = start;
+    double geometry_cost = std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < starts.size(); ++k) {
         PhotoParameters values = start;
-        at(values, PhotoParameter::thickness_um) = starts[k];
+        at(values, PhotoParameter::thickness_um) = starts[k].thickness_um;
         const double cost = solve_level(*coarse, values, options, bounds, 30, 1e-6, result.iterations);
-        const double thickness = at(values, PhotoParameter::thickness_um);
-        const bool repeated = std::any_of(result.candidates.begin(), result.candidates.end(), [&](const ThicknessCandidate& other) {
-            return std::abs(other.thickness_um - thickness) < 1e-3 * thickness;
-        });
-        if (!repeated) {
-            result.candidates.push_back({starts[k], thickness, cost / std::max(1, 3 * coarse->usable_count)});
-            refined.push_back(values);
+        if (cost < geometry_cost) {
+            geometry_cost = cost;
+            geometry = values;
         }
-        if (progress) progress(0.15 + 0.5 * static_cast<double>(k + 1) / static_cast<double>(starts.size()));
+        if (progress) progress(0.15 + 0.4 * static_cast<double>(k + 1) / static_cast<double>(starts.size()));
     }
-    const std::size_t best = static_cast<std::size_t>(
-        std::min_element(result.candidates.begin(), result.candidates.end(),
-                         [](const ThicknessCandidate& a, const ThicknessCandidate& b) { return a.cost < b.cost; }) - result.candidates.begin());
-    result.values = refined[best];
-    const double best_cost = solve_level(*fine, result.values, options, bounds, 40, 1e-8, result.iterations) / std::max(1, 3 * fine->usable_count);
+    // The coarse level's blur hides the fine fringes of a thick slab, and there thickness trades against
+    // blur (the attenuation depends on σ·d), so its thickness and blur are not trusted: the thickness is
+    // scanned again on the unblurred photo at the geometry and camera of its lowest minimum, from the
+    // starting blur. The fringes that tell the minima apart are those the blur attenuates, so each minimum
+    // is then refined there, within its basin, with the blur and the camera but not the geometry (whose
+    // figure terms are then computed once); the lowest is refined on the full photo with every parameter.
+    at(geometry, PhotoParameter::blur_variance_px2) = at(start, PhotoParameter::blur_variance_px2);
+    const std::vector<ThicknessMinimum> minima =
+        thickness_minima(*scan, model.rgb_per_transmission, geometry, scan_min_um, scan_max_um, options.candidates,
+                         StepRule::power_weighted_fringes);
+    ConoscopeFitOptions geometry_held = options;
+    for (std::size_t k = index_of(PhotoParameter::center_x_px); k <= index_of(PhotoParameter::azimuth_deg); ++k) geometry_held.free[k] = false;
+    std::size_t best = 0;
+    double best_scan_cost = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < minima.size(); ++k) {
+        PhotoParameters values = geometry;
+        at(values, PhotoParameter::thickness_um) = minima[k].thickness_um;
+        const double cost = solve_level(*scan, values, geometry_held, basin_bounds(minima[k]), 20, 1e-6, result.iterations) /
+                            std::max(1, 3 * scan->usable_count);
+        result.candidates.push_back({minima[k].thickness_um, at(values, PhotoParameter::thickness_um), cost});
+        if (cost < best_scan_cost) {
+            best_scan_cost = cost;
+            best = k;
+            result.values = values;
+        }
+        if (progress) progress(0.55 + 0.15 * static_cast<double>(k + 1) / static_cast<double>(minima.size()));
+    }
+    const double best_cost = solve_level(*fine, result.values, options, basin_bounds(minima[best]), 40, 1e-8, result.iterations) /
+                             std::max(1, 3 * fine->usable_count);
+    result.candidates[best].thickness_um = at(result.values, PhotoParameter::thickness_um);
     std::sort(result.candidates.begin(), result.candidates.end(),
               [](const ThicknessCandidate& a, const ThicknessCandidate& b) { return a.cost < b.cost; });
     if (progress) progress(0.95);

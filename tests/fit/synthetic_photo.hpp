@@ -1,7 +1,7 @@
 #pragma once
 // Photographs of conoscopic figures made the way a camera makes them, for the fitting tests: the figure
 // rendered by the conoscope renderer with the field's centre, scale and the camera's rotation applied,
-// then blur, white balance, a tone curve, noise, 8-bit quantisation and JPEG compression (OpenCV).
+// averaged over each pixel's area, then blur, white balance, a tone curve, noise, 8-bit quantisation and JPEG compression (OpenCV).
 #include "petroscope/fit/conoscope_fit.hpp"
 #include "petroscope/io/data_files.hpp"
 #include "petroscope/optics/orientation.hpp"
@@ -35,6 +35,7 @@ struct PhotoTruth {
     double blur_px = 1.0;
     double noise = 2.0 / 255.0;
     int jpeg_quality = 85;  // 0: no compression
+    int supersampling = 4;  // rendered samples per pixel side: a camera pixel integrates light over its area
 };
 
 /// White light (D65, 380 … 780 nm by 5 nm) or one wavelength.
@@ -103,8 +104,9 @@ inline Image synthesize_photo(const ConoscopePhotoModel& model, const PhotoLight
     // Render only the field: a square of side 2⌈R⌉ + 2 around it, with the NA scaled to match.
     const double radius_px = truth.radius_scale * 0.5 * size_px;
     const int render_size = 2 * static_cast<int>(std::ceil(radius_px)) + 2;
+    const int samples = std::max(truth.supersampling, 1);
     ConoscopeSettings settings = model.settings;
-    settings.size_px = render_size;
+    settings.size_px = render_size * samples;
     settings.numerical_aperture = model.settings.numerical_aperture * (0.5 * render_size) / radius_px;
     settings.thickness_um = truth.thickness_um;
     settings.crystal_axes = model.orientation(truth.tilt_deg, truth.azimuth_deg);
@@ -121,8 +123,13 @@ inline Image synthesize_photo(const ConoscopePhotoModel& model, const PhotoLight
             const int x = origin_x + column, y = origin_y + row;
             if (x < 0 || y < 0 || x >= size_px || y >= size_px) continue;
             if (std::hypot(column + 0.5 - 0.5 * render_size, row + 0.5 - 0.5 * render_size) > radius_px) continue;
-            Eigen::Vector3d value;
-            for (int c = 0; c < 3; ++c) value[c] = figure.at(column, row, light.integrator ? c : 0);
+            Eigen::Vector3d value = Eigen::Vector3d::Zero();
+            for (int sy = 0; sy < samples; ++sy) {
+                for (int sx = 0; sx < samples; ++sx) {
+                    for (int c = 0; c < 3; ++c) value[c] += figure.at(column * samples + sx, row * samples + sy, light.integrator ? c : 0);
+                }
+            }
+            value /= samples * samples;
             const Eigen::Vector3d rgb = light.integrator ? Eigen::Vector3d(light.display * value) : value;
             linear.at<cv::Vec3d>(y, x) = cv::Vec3d(rgb[0], rgb[1], rgb[2]);
         }

@@ -71,11 +71,13 @@ struct ConoscopeFitOptions {
     double saturated_level = 0.995;   // pixels with a channel at or above this are not used
 };
 
-/// One minimum of the cost over thickness, after refinement on the blurred (coarse) level.
+/// One minimum of the cost over thickness on the unblurred photo, at the geometry found on the blurred
+/// (coarse) level, after refinement of thickness, blur and camera there (the best one: of every parameter
+/// on the full photo).
 struct ThicknessCandidate {
-    double start_thickness_um = 0.0;  // where the global search found it
+    double start_thickness_um = 0.0;  // where the thickness scan found it
     double thickness_um = 0.0;        // after refinement
-    double cost = 0.0;                // mean robust cost per residual on the coarse level
+    double cost = 0.0;                // mean robust cost per residual after the refinement with the geometry held
 };
 
 struct FittedValue {
