@@ -70,6 +70,9 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& file)
         return nlohmann::json::parse(text);
     } catch (const nlohmann::json::parse_error& e) {
         throw InputError(file + ": invalid JSON at byte " + std::to_string(e.byte) + ": " + e.what());
+    } catch (const nlohmann::json::exception& e) {
+        // Valid syntax the reader cannot hold, e.g. a number beyond the range of a double (1e7451).
+        throw InputError(file + ": unreadable JSON: " + e.what());
     }
 }
 
