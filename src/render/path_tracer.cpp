@@ -347,6 +347,32 @@ RenderResult render_scene(const Scene& scene, const RenderSpectrum& spectrum, co
     RenderResult result;
     result.stokes_xyz = Image(width, height, 12);
     result.standard_error_y = Image(width, height, 4);
+    // One pixel: its samples' mean Stokes × XYZ and the standard errors of its Y.
+    const auto render_pixel = [&](int column, int row, RenderStatistics& statistics) {
+        const std::uint64_t pixel = static_cast<std::uint64_t>(row) * static_cast<std::uint64_t>(width) + static_cast<std::uint64_t>(column);
+        Random random(settings.seed, pixel);
+        Contribution sum = Contribution::Zero();
+        Eigen::Vector4d sum_y2 = Eigen::Vector4d::Zero();
+        const double offset = random.uniform();
+        for (int sample = 0; sample < spp; ++sample) {
+            // Wavelengths stratified within the pixel, positions uniform in the pixel.
+            const std::size_t index = tracer.wavelength_index((sample + offset) / spp);
+            const double sx = ((column + random.uniform()) / width - 0.5) * camera.sensor_width_mm;
+            const double sy = (0.5 - (row + random.uniform()) / height) * camera.sensor_height_mm;
+            const Eigen::Vector3d d = (camera.sensor_distance_mm * frame.forward + sx * frame.right + sy * frame.up).normalized();
+            const Eigen::Vector3d camera_s = (frame.right - frame.right.dot(d) * d).normalized();
+            ++statistics.paths;
+            const Contribution contribution = tracer.trace(camera.position_mm, d, camera_s, index, random, statistics);
+            sum += contribution;
+            sum_y2 += contribution.col(1).cwiseAbs2();
+        }
+        for (int s = 0; s < 4; ++s) {
+            for (int c = 0; c < 3; ++c) result.stokes_xyz.at(column, row, 3 * s + c) = static_cast<float>(sum(s, c) / spp);
+            const double mean_y = sum(s, 1) / spp;
+            const double variance = spp > 1 ? std::max(sum_y2[s] / spp - mean_y * mean_y, 0.0) * spp / (spp - 1) : 0.0;
+            result.standard_error_y.at(column, row, s) = static_cast<float>(std::sqrt(variance / spp));
+        }
+    };
     std::atomic<int> rows_done{0};
     RenderStatistics totals;
     std::exception_ptr failure;
@@ -361,33 +387,7 @@ RenderResult render_scene(const Scene& scene, const RenderSpectrum& spectrum, co
             failed = static_cast<bool>(failure);
             if (failed) continue;
             try {
-            for (int column = 0; column < width; ++column) {
-                const std::uint64_t pixel = static_cast<std::uint64_t>(row) * static_cast<std::uint64_t>(width) + static_cast<std::uint64_t>(column);
-                Random random(settings.seed, pixel);
-                Eigen::Matrix<double, 4, 3> sum = Eigen::Matrix<double, 4, 3>::Zero();
-                Eigen::Vector4d sum_y2 = Eigen::Vector4d::Zero();
-                const double offset = random.uniform();
-                for (int sample = 0; sample < spp; ++sample) {
-                    // Wavelengths stratified within the pixel, positions uniform in the pixel.
-                    const std::size_t index = tracer.wavelength_index((sample + offset) / spp);
-                    const double sx = ((column + random.uniform()) / width - 0.5) * camera.sensor_width_mm;
-                    const double sy = (0.5 - (row + random.uniform()) / height) * camera.sensor_height_mm;
-                    const Eigen::Vector3d d = (camera.sensor_distance_mm * frame.forward + sx * frame.right + sy * frame.up).normalized();
-                    const Eigen::Vector3d camera_s = (frame.right - frame.right.dot(d) * d).normalized();
-                    ++statistics.paths;
-                    const Contribution contribution = tracer.trace(camera.position_mm, d, camera_s, index, random, statistics);
-                    sum += contribution;
-                    sum_y2 += contribution.col(1).cwiseAbs2();
-                }
-                for (int s = 0; s < 4; ++s) {
-                    for (int c = 0; c < 3; ++c) result.stokes_xyz.at(column, row, 3 * s + c) = static_cast<float>(sum(s, c) / spp);
-                }
-                for (int s = 0; s < 4; ++s) {
-                    const double mean_y = sum(s, 1) / spp;
-                    const double variance = spp > 1 ? std::max(sum_y2[s] / spp - mean_y * mean_y, 0.0) * spp / (spp - 1) : 0.0;
-                    result.standard_error_y.at(column, row, s) = static_cast<float>(std::sqrt(variance / spp));
-                }
-            }
+                for (int column = 0; column < width; ++column) render_pixel(column, row, statistics);
             } catch (...) {
 #pragma omp critical(render_failure)
                 if (!failure) failure = std::current_exception();
