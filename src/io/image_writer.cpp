@@ -102,7 +102,9 @@ void write_image(const Image& linear_rgb, const std::filesystem::path& path, Ima
     std::vector<float> back(linear_rgb.pixels.size());
     if (!check || check->spec().width != linear_rgb.width || check->spec().height != linear_rgb.height ||
         !check->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, back.data())) {
-        throw InputError("cannot write " + path.string() + ": the file did not come out whole (is the disk full, or a file size limit set?)");
+        const std::string reason = check ? check->geterror() : OIIO::geterror();
+        throw InputError("cannot write " + path.string() + ": the file did not come out whole (is the disk full, or a file size limit set?)" +
+                         (reason.empty() ? std::string() : " (" + reason + ")"));
     }
 }
 

@@ -26,7 +26,7 @@ TEST_F(Interrupt, SigintAndSigtermLeaveNoOutputFile) {
     const std::string scene = testing::quoted(std::filesystem::path(PETROSCOPE_SOURCE_DIR) / "scenes" / "calcite-box.json");
     for (const std::string signal : {"INT", "TERM"}) {
         // A render of hours, stopped after 2 s, while the temporary image and sidecar exist.
-        const testing::CommandResult run = shell("timeout --preserve-status -s " + signal + " 2 \"$P\" render --scene " + scene + " --spp 100000 -o box.png");
+        const testing::CommandResult run = shell("timeout --preserve-status -s " + signal + " 2 \"$P\" render --scene " + scene + " --spp 50000 -o box.png");
         EXPECT_EQ(run.exit_code, signal == "INT" ? 130 : 143) << run.err;
         EXPECT_NE(run.err.find("interrupted"), std::string::npos) << run.err;
         EXPECT_NE(run.err.find("no output was written"), std::string::npos) << run.err;
