@@ -42,7 +42,7 @@ struct Branch {
     Eigen::Vector4d stokes = Eigen::Vector4d::Zero();  // of the reversed problem's wave, its (s, p) basis
 };
 
-/// The traced path arrives in the surrounding medium (index `n_outside`) along `direction` at a face
+/// The traced path arrives in the surrounding medium `outside` along `direction` at a face
 /// whose outward normal is `outward`: the branches (reflected into the outside medium, refracted modes).
 std::vector<Branch> branches_from_outside(const Eigen::Vector3d& outward, const Eigen::Vector3d& direction, const OpticalMedium& outside,
                                           const OpticalMedium& crystal);

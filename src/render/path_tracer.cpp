@@ -200,6 +200,7 @@ private:
             }
             std::vector<Branch> branches;
             Eigen::Vector3d outward;
+            OpticalMedium medium;  // the crystal's, at this path's wavelength
             const bool from_outside = path.crystal < 0;
             int hit_crystal = path.crystal;
             if (from_outside) {
@@ -224,7 +225,8 @@ private:
                 }
                 path.position += nearest * path.d;
                 outward = scene_.crystals[static_cast<std::size_t>(hit_crystal)].shape.face_normals[static_cast<std::size_t>(face)];
-                branches = detail::branches_from_outside(outward, path.d, air, crystal_medium(hit_crystal, wavelength_nm));
+                medium = crystal_medium(hit_crystal, wavelength_nm);
+                branches = detail::branches_from_outside(outward, path.d, air, medium);
             } else {
                 // Inside a crystal: the face the ray leaves through.
                 const ConvexPolyhedron& shape = scene_.crystals[static_cast<std::size_t>(path.crystal)].shape;
@@ -233,7 +235,8 @@ private:
                 path.position += exit->first * path.d;
                 outward = shape.face_normals[static_cast<std::size_t>(exit->second)];
                 if (detail::walks_off(path.wave_normal, outward)) return walked_off(statistics);
-                branches = detail::branches_from_inside(outward, path.wave_normal, path.mode, air, crystal_medium(path.crystal, wavelength_nm));
+                medium = crystal_medium(path.crystal, wavelength_nm);
+                branches = detail::branches_from_inside(outward, path.wave_normal, path.mode, air, medium);
             }
             ++statistics.crystal_interactions;
             if (branches.empty()) return Contribution::Zero();
@@ -241,7 +244,7 @@ private:
                 Contribution sum = Contribution::Zero();
                 for (const Branch& b : branches) {
                     PathState next = path;
-                    if (!take(next, b, 1.0, from_outside, hit_crystal, outward, wavelength_nm)) {
+                    if (!take(next, b, 1.0, from_outside, hit_crystal, outward, air, medium)) {
                         ++statistics.inconsistent;
                         continue;
                     }
@@ -251,16 +254,16 @@ private:
                 return sum;
             }
             const auto [chosen, probability] = choose(branches, random.uniform());
-            if (!take(path, branches[chosen], probability, from_outside, hit_crystal, outward, wavelength_nm)) return inconsistent(statistics);
+            if (!take(path, branches[chosen], probability, from_outside, hit_crystal, outward, air, medium)) return inconsistent(statistics);
         }
     }
 
     /// Moves `path` onto branch `b` (taken with `probability`) at the face with `outward` normal of crystal
-    /// `crystal`; false when the forward solution has no wave matching the traced one.
+    /// `crystal` (its `medium` at the path's wavelength, in `air`); false when the forward solution has no
+    /// wave matching the traced one.
     bool take(PathState& path, const Branch& b, double probability, bool from_outside, int crystal, const Eigen::Vector3d& outward,
-              double wavelength_nm) const {
+              const OpticalMedium& air, const OpticalMedium& medium) const {
         if (from_outside) {
-            const OpticalMedium air = OpticalMedium::isotropic(1.0), medium = crystal_medium(crystal, wavelength_nm);
             if (!b.in_crystal) {
                 const std::optional<Eigen::Matrix4d> reflection = detail::reflection_mueller(outward, path.d, b.wave_normal, air, medium);
                 if (!reflection) return false;
