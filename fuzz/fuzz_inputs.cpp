@@ -75,7 +75,7 @@ void dispatch(const std::string& name, std::string_view input) {
         parse_interface_case(parse_json_text(std::string(input), "case.json"), "case.json", catalog());
     } else if (name == "scene") {
         static const RenderSpectrum spectrum = render_spectrum(load_cie_1931_observer(), load_light_source("D65"));
-        read_scene(write_input("scene.json", input), catalog(), spectrum);
+        parse_scene(std::string(input), scratch() / "scene.json", catalog(), spectrum);
     } else if (name == "values") {
         values(input);
     } else {

@@ -40,9 +40,10 @@ private:
     bool allow_large_ = false;
 };
 
-// Without --allow-large: at most 4096² pixels (the result holds 16 floats per pixel: 1.1 GB at the limit)
-// and 65536 samples per pixel. With it: the scene's limit of 16384 px per side (17 GB for 16384²) and
-// 10⁶ samples.
+// Without --allow-large: at most 4096² pixels and 65536 samples per pixel. With it: the scene's limit of
+// 16384 px per side and 10⁶ samples. Memory: 88 bytes a pixel (16 floats of Stokes XYZ and standard
+// errors, the camera's XYZ and the RGB image): 1.5 GB at 4096², 24 GB at 16384² (docs/cli_intro.md).
+constexpr double kBytesPerPixel = 88.0;
 constexpr long long kLargePixels = 4096LL * 4096LL;
 constexpr int kLargeSamples = 65536;
 
@@ -57,7 +58,7 @@ void RenderOptions::add_options(CLI::App* command) {
     command->add_option("--seed", seed_, "Random seed (the image does not depend on the number of threads)")->capture_default_str();
     command->add_option("--exposure", exposure_, "Multiplies the image (1: a wall of white texels is white)")->capture_default_str();
     command->add_flag("--allow-large", allow_large_,
-                      "Allow images above 4096x4096 px (16 floats per pixel: 1.1 GB at 4096x4096, 17 GB at the scene limit 16384x16384) and "
+                      "Allow images above 4096x4096 px (88 bytes per pixel: 1.5 GB at 4096x4096, 24 GB at the scene limit 16384x16384) and "
                       "more than 65536 samples per pixel");
 }
 
@@ -77,11 +78,12 @@ PreparedFrame RenderOptions::prepare(FrameContext& context) const {
     if (polarizer_deg_ && no_polarizer_) throw InputError("--polarizer-deg and --no-polarizer exclude each other");
     if (!(exposure_ > 0.0) || !std::isfinite(exposure_)) throw InputError("--exposure must be > 0");
     const auto spectrum = std::make_shared<RenderSpectrum>(render_spectrum(load_cie_1931_observer(), load_light_source("D65")));
-    const auto scene = std::make_shared<Scene>(read_scene(scene_, context.catalog(), *spectrum));
+    const std::string scene_text = read_text_file(scene_);  // read once: parsed and hashed alike
+    const auto scene = std::make_shared<Scene>(parse_scene(scene_text, scene_, context.catalog(), *spectrum));
     const long long pixels = static_cast<long long>(scene->camera.width_px) * scene->camera.height_px;
     if (!allow_large_ && pixels > kLargePixels) {
         throw InputError(scene_ + ": camera: " + std::to_string(scene->camera.width_px) + " x " + std::to_string(scene->camera.height_px) +
-                         " px is above 4096 x 4096 (it needs " + format_number(std::round(pixels * 64.0 / 1e9 * 10.0) / 10.0) +
+                         " px is above 4096 x 4096 (it needs " + format_number(std::round(static_cast<double>(pixels) * kBytesPerPixel / 1e8) / 10.0) +
                          " GB); add --allow-large to render it anyway");
     }
     if (!allow_large_ && spp_ > kLargeSamples) {
@@ -100,7 +102,7 @@ PreparedFrame RenderOptions::prepare(FrameContext& context) const {
     const SceneCamera& camera = scene->camera;
     nlohmann::json sidecar{{"program", "petroscope 0.1.0"},
                            {"command", "render"},
-                           {"scene", {{"file", scene_}, {"fnv1a64", scene_hash(read_text_file(scene_))}}},
+                           {"scene", {{"file", scene_}, {"fnv1a64", scene_hash(scene_text)}}},
                            {"samples_per_pixel", spp_},
                            {"max_depth", depth_},
                            {"roulette_depth", settings.roulette_depth},

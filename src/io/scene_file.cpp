@@ -11,6 +11,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 #include <numbers>
@@ -184,12 +185,16 @@ SceneCrystal read_crystal(const JsonValue& value, const MineralCatalog& catalog,
                                       Eigen::Quaterniond::FromTwoVectors(shape.polyhedron.face_normals[0], -Eigen::Vector3d::UnitZ()))
                                          .toRotationMatrix();
         std::vector<Eigen::Vector3d> vertices;
-        for (const auto& v : shape.polyhedron.vertices) vertices.push_back(turn * v);
-        const ConvexPolyhedron turned = make_convex_polyhedron(vertices, shape.polyhedron.faces);
+        Eigen::Vector3d lower = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), upper = -lower;
+        for (const auto& v : shape.polyhedron.vertices) {
+            vertices.push_back(turn * v);
+            lower = lower.cwiseMin(vertices.back());
+            upper = upper.cwiseMax(vertices.back());
+        }
         // The smallest safe gap: well above the rounding of the intersection points (1e-10 of the scene).
         const double gap = place.has("gap_mm") ? positive(place["gap_mm"]) : 1e-8 * (box.upper_mm - box.lower_mm).norm();
-        const Eigen::Vector3d middle = 0.5 * (turned.lower() + turned.upper());
-        const Eigen::Vector3d shift(center[0] - middle.x(), center[1] - middle.y(), box.lower_mm.z() + gap - turned.lower().z());
+        const Eigen::Vector3d middle = 0.5 * (lower + upper);
+        const Eigen::Vector3d shift(center[0] - middle.x(), center[1] - middle.y(), box.lower_mm.z() + gap - lower.z());
         for (auto& v : vertices) v += shift;
         crystal.shape = make_convex_polyhedron(vertices, shape.polyhedron.faces);
         optic_axis = turn * shape.optic_axis;
@@ -249,7 +254,11 @@ Image colour_grid_texture(int cells_x, int cells_y, int border_cells, int cell_p
 }
 
 Scene read_scene(const std::filesystem::path& file, const MineralCatalog& catalog, const RenderSpectrum& spectrum) {
-    const nlohmann::json document = parse_json_text(read_text_file(file), file.string());
+    return parse_scene(read_text_file(file), file, catalog, spectrum);
+}
+
+Scene parse_scene(const std::string& text, const std::filesystem::path& file, const MineralCatalog& catalog, const RenderSpectrum& spectrum) {
+    const nlohmann::json document = parse_json_text(text, file.string());
     const JsonValue root(document, file.string(), "");
     root.only_keys({"description", "box", "crystals", "camera"});
     Scene scene;
