@@ -315,6 +315,7 @@ TEST_F(Cli, ConicalRejectsBadInput) {
     expect_rejected("conical --length -5mm" + output, {"--length"});
     expect_rejected("conical --waist 0um" + output, {"--waist"});
     expect_rejected("conical --mode ray --screen-distance -1mm" + output, {"--screen-distance"});
+    expect_rejected("conical --mode ray --rays 20000000" + output, {"--rays 20000000", "above 1e7", "--allow-large"});
     expect_rejected("conical --mode ray --pinhole 30mm --length 20mm" + output, {"pinhole", "larger than the slab"});
     expect_rejected("conical --polarization sideways" + output, {"--polarization"});
     expect_rejected("conical --mode particle" + output, {"--mode"});
