@@ -42,6 +42,51 @@ private:
     std::uint64_t state_;
 };
 
+/// The random numbers of one pixel's samples; each is uniform on [0, 1) by itself, so every estimate stays
+/// unbiased, while the pixel's samples together cover [0, 1) evenly:
+/// - the wavelength coordinate of sample i lies in stratum i of spp, at offset o for even i and 1 − o for
+///   odd i, one random o per pixel: an antithetic pair of strata is symmetric about its middle, so the
+///   error of a smooth spectral integrand loses its first-order term (O(1/spp²) instead of O(1/spp));
+/// - the first 4 decisions along each path (branch choices and roulette, in the order a path meets them)
+///   are Latin-hypercube stratified (McKay, Beckman & Conover 1979): decision j of sample i draws from
+///   stratum π_j(i) of spp, π_j a random permutation. Later decisions draw independently.
+/// Not `stratified`: every number is drawn independently (plain Monte Carlo).
+class PixelSampler {
+public:
+    PixelSampler(Random& random, int samples, bool stratified)
+        : random_(random), samples_(samples), stratified_(stratified), offset_(random.uniform()), permutations_(stratified ? 4 : 0) {
+        for (std::vector<int>& permutation : permutations_) {
+            permutation.resize(static_cast<std::size_t>(samples));
+            for (int i = 0; i < samples; ++i) permutation[static_cast<std::size_t>(i)] = i;
+            // Fisher–Yates.
+            for (int i = samples - 1; i > 0; --i) {
+                const auto j = static_cast<int>(random.next() % static_cast<std::uint64_t>(i + 1));
+                std::swap(permutation[static_cast<std::size_t>(i)], permutation[static_cast<std::size_t>(j)]);
+            }
+        }
+    }
+    void start_sample(int sample) { sample_ = sample; }
+    double wavelength_coordinate() {
+        if (!stratified_) return random_.uniform();
+        return (sample_ + (sample_ % 2 == 1 ? 1.0 - offset_ : offset_)) / samples_;
+    }
+    /// Decision `decision` (0, 1, … along the path) of the current sample.
+    double decision(int decision) {
+        if (decision >= static_cast<int>(permutations_.size())) return random_.uniform();
+        const int stratum = permutations_[static_cast<std::size_t>(decision)][static_cast<std::size_t>(sample_)];
+        return (stratum + random_.uniform()) / samples_;
+    }
+    Random& random() { return random_; }
+
+private:
+    Random& random_;
+    int samples_;
+    bool stratified_;
+    double offset_;
+    int sample_ = 0;
+    std::vector<std::vector<int>> permutations_;
+};
+
 struct CameraFrame {
     Eigen::Vector3d forward, right, up;
 };
@@ -152,7 +197,7 @@ public:
     /// exact colour of the wall it sees; one that does is followed at wavelength `index` and weighted by
     /// 1/pdf.
     Contribution trace(const Eigen::Vector3d& camera_position, const Eigen::Vector3d& direction, const Eigen::Vector3d& camera_s,
-                       std::size_t index, Random& random, RenderStatistics& statistics) const {
+                       std::size_t index, PixelSampler& sampler, RenderStatistics& statistics) const {
         const std::optional<double> entry = box_entry(scene_.box, camera_position, direction);
         if (!entry) return Contribution::Zero();
         PathState path;
@@ -161,7 +206,7 @@ public:
         // The camera's (ŝ, p̂) has p̂ = −up: S2 and S3 change sign to the (right, up) frame.
         path.mueller = Eigen::Vector4d(1, 1, -1, -1).asDiagonal();
         path.s_hat = camera_s;
-        return follow(path, index, random, statistics);
+        return follow(path, index, sampler, statistics);
     }
 
 private:
@@ -177,11 +222,15 @@ private:
         std::string mode;
         Eigen::Vector3d wave_normal = Eigen::Vector3d::Zero();
         int depth = 0;  // crystal-face interactions so far
+        int decisions = 0;  // random decisions (branch choices, roulette) so far
+        /// The fraction of the camera ray's power that the path carries (the product of its branches'
+        /// powers over their probabilities): 1 while it is followed by power alone, less after splits.
+        double power = 1.0;
     };
 
     /// Follows `path` to a wall. At the first `split_depth` interactions every branch is followed with
     /// its full transfer; later one is chosen by power.
-    Contribution follow(PathState path, std::size_t index, Random& random, RenderStatistics& statistics) const {
+    Contribution follow(PathState path, std::size_t index, PixelSampler& sampler, RenderStatistics& statistics) const {
         const double wavelength_nm = spectrum_.wavelengths_nm[index];
         const OpticalMedium air = OpticalMedium::isotropic(1.0);
         for (;; ++path.depth) {
@@ -189,13 +238,13 @@ private:
                 ++statistics.depth_limited;
                 return Contribution::Zero();
             }
-            if (path.depth >= settings_.roulette_depth) {
-                const double throughput = path.crystal < 0 ? std::abs(path.mueller(0, 0)) : std::abs(path.column[0]);
-                const double survive = std::min(1.0, throughput);
-                if (random.uniform() >= survive) {
+            if (path.depth >= settings_.roulette_depth && path.power < settings_.roulette_power) {
+                const double survive = path.power / settings_.roulette_power;
+                if (sampler.decision(path.decisions++) >= survive) {
                     ++statistics.roulette_killed;
                     return Contribution::Zero();
                 }
+                path.power = settings_.roulette_power;
                 if (path.crystal < 0) path.mueller /= survive; else path.column /= survive;
             }
             std::vector<Branch> branches;
@@ -249,11 +298,11 @@ private:
                         continue;
                     }
                     ++next.depth;
-                    sum += follow(next, index, random, statistics);
+                    sum += follow(next, index, sampler, statistics);
                 }
                 return sum;
             }
-            const auto [chosen, probability] = choose(branches, random.uniform());
+            const auto [chosen, probability] = choose(branches, sampler.decision(path.decisions++));
             if (!take(path, branches[chosen], probability, from_outside, hit_crystal, outward, air, medium)) return inconsistent(statistics);
         }
     }
@@ -289,6 +338,7 @@ private:
             path.crystal = -1;
         }
         path.d = b.ray;
+        path.power *= b.power / probability;
         return true;
     }
 
@@ -354,18 +404,19 @@ RenderResult render_scene(const Scene& scene, const RenderSpectrum& spectrum, co
     const auto render_pixel = [&](int column, int row, RenderStatistics& statistics) {
         const std::uint64_t pixel = static_cast<std::uint64_t>(row) * static_cast<std::uint64_t>(width) + static_cast<std::uint64_t>(column);
         Random random(settings.seed, pixel);
+        PixelSampler sampler(random, spp, settings.stratified);
         Contribution sum = Contribution::Zero();
         Eigen::Vector4d sum_y2 = Eigen::Vector4d::Zero();
-        const double offset = random.uniform();
         for (int sample = 0; sample < spp; ++sample) {
-            // Wavelengths stratified within the pixel, positions uniform in the pixel.
-            const std::size_t index = tracer.wavelength_index((sample + offset) / spp);
+            sampler.start_sample(sample);
+            // Wavelengths stratified within the pixel (PixelSampler), positions uniform in the pixel.
+            const std::size_t index = tracer.wavelength_index(sampler.wavelength_coordinate());
             const double sx = ((column + random.uniform()) / width - 0.5) * camera.sensor_width_mm;
             const double sy = (0.5 - (row + random.uniform()) / height) * camera.sensor_height_mm;
             const Eigen::Vector3d d = (camera.sensor_distance_mm * frame.forward + sx * frame.right + sy * frame.up).normalized();
             const Eigen::Vector3d camera_s = (frame.right - frame.right.dot(d) * d).normalized();
             ++statistics.paths;
-            const Contribution contribution = tracer.trace(camera.position_mm, d, camera_s, index, random, statistics);
+            const Contribution contribution = tracer.trace(camera.position_mm, d, camera_s, index, sampler, statistics);
             sum += contribution;
             sum_y2 += contribution.col(1).cwiseAbs2();
         }

@@ -1,8 +1,9 @@
 #pragma once
 // Backward spectral polarized path tracing of a Scene (docs/render.md): one wavelength per path (strata
 // over the grid per pixel), polarization as Stokes vectors and Mueller matrices built from the exact
-// interface model's waves at every crystal face, one branch per interaction chosen by power, Russian
-// roulette, a depth limit. The result is the Stokes vector of the light reaching each pixel, in XYZ.
+// interface model's waves at every crystal face, every branch followed at a path's first faces and one
+// chosen by power after them, Russian roulette for weak split branches, a depth limit. The result is the
+// Stokes vector of the light reaching each pixel, in XYZ.
 #include "petroscope/core/image.hpp"
 #include "petroscope/core/progress.hpp"
 #include "petroscope/render/scene.hpp"
@@ -18,11 +19,19 @@ namespace petroscope {
 struct RenderSettings {
     int samples_per_pixel = 64;
     int max_depth = 15;  // interactions with crystal faces along a path
-    int roulette_depth = 3;  // Russian roulette from this depth on
+    /// Russian roulette from `roulette_depth` on, for paths that carry less than `roulette_power` of their
+    /// camera ray's power (split branches): they survive with probability power / roulette_power. A path
+    /// followed by power alone keeps all its power (lossless crystals) and ends at a wall or max_depth.
+    int roulette_depth = 3;
+    double roulette_power = 0.01;
     /// At the first `split_depth` interactions of a path every branch is followed (splitting: no noise
     /// from choosing between the doubled images or between reflection and refraction there); later ones
     /// choose one branch by power.
-    int split_depth = 1;
+    int split_depth = 3;
+    /// A pixel's samples stratify their wavelengths (antithetic pairs of strata) and the first random
+    /// decisions of their paths (Latin hypercube), so the pixel converges faster than 1/√spp; false draws
+    /// every number independently (plain Monte Carlo, noise exactly ∝ 1/√spp).
+    bool stratified = true;
     std::uint64_t seed = 1;
 };
 
