@@ -38,11 +38,12 @@ TEST(PathTracer, FurnaceCrystalIsInvisibleAndLightStaysUnpolarized) {
     scene.camera.sensor_distance_mm = 60.0;
     RenderSettings settings;
     settings.samples_per_pixel = 32;
-    settings.max_depth = 100000;  // no truncation bias: Russian roulette ends the paths
+    settings.max_depth = 100000;  // no truncation bias: every path leaves the crystal or meets roulette first
     const RenderResult result = render_scene(scene, testing::d65_spectrum(), settings);
-    std::printf("paths %llu, crystal interactions %llu, inconsistent %llu, roulette %llu, %.2f s\n",
+    std::printf("paths %llu, crystal interactions %llu, inconsistent %llu, roulette %llu, walked off %llu, depth-limited %llu, %.2f s\n",
                 static_cast<unsigned long long>(result.statistics.paths), static_cast<unsigned long long>(result.statistics.crystal_interactions),
                 static_cast<unsigned long long>(result.statistics.inconsistent), static_cast<unsigned long long>(result.statistics.roulette_killed),
+                static_cast<unsigned long long>(result.statistics.walked_off), static_cast<unsigned long long>(result.statistics.depth_limited),
                 result.statistics.seconds);
     EXPECT_EQ(result.statistics.inconsistent, 0u);
     EXPECT_GT(result.statistics.crystal_interactions, 1000u);
