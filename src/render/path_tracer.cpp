@@ -47,14 +47,17 @@ private:
 /// - the wavelength coordinate of sample i lies in stratum i of spp, at offset o for even i and 1 − o for
 ///   odd i, one random o per pixel: an antithetic pair of strata is symmetric about its middle, so the
 ///   error of a smooth spectral integrand loses its first-order term (O(1/spp²) instead of O(1/spp));
-/// - the first 4 decisions along each path (branch choices and roulette, in the order a path meets them)
-///   are Latin-hypercube stratified (McKay, Beckman & Conover 1979): decision j of sample i draws from
-///   stratum π_j(i) of spp, π_j a random permutation. Later decisions draw independently.
+/// - the first kStratifiedDecisions (4) decisions along each path (branch choices and roulette, in the
+///   order a path meets them) are Latin-hypercube stratified (McKay, Beckman & Conover 1979): decision j
+///   of sample i draws from stratum π_j(i) of spp, π_j a random permutation. Later decisions draw
+///   independently.
 /// Not `stratified`: every number is drawn independently (plain Monte Carlo).
 class PixelSampler {
 public:
+    static constexpr std::size_t kStratifiedDecisions = 4;
+
     PixelSampler(Random& random, int samples, bool stratified)
-        : random_(random), samples_(samples), stratified_(stratified), offset_(random.uniform()), permutations_(stratified ? 4 : 0) {
+        : random_(random), samples_(samples), stratified_(stratified), offset_(random.uniform()), permutations_(stratified ? kStratifiedDecisions : 0) {
         for (std::vector<int>& permutation : permutations_) {
             permutation.resize(static_cast<std::size_t>(samples));
             for (int i = 0; i < samples; ++i) permutation[static_cast<std::size_t>(i)] = i;
@@ -76,8 +79,6 @@ public:
         const int stratum = permutations_[static_cast<std::size_t>(decision)][static_cast<std::size_t>(sample_)];
         return (stratum + random_.uniform()) / samples_;
     }
-    Random& random() { return random_; }
-
 private:
     Random& random_;
     int samples_;
