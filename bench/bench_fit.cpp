@@ -1,7 +1,10 @@
 // Fitting a 512² white-light photo of a conoscopic figure with every nuisance parameter free (thickness,
 // centre, scale, rotation, white balance, black level, gamma, blur): the photo is synthesised once
-// (tests/fit/synthetic_photo.hpp: muscovite 300 µm, centre and scale off, camera turned, JPEG 85).
+// (tests/fit/synthetic_photo.hpp: muscovite 300 µm, centre and scale off, camera turned, JPEG 85), with
+// and without the check of the JPEG encoding's systematic error.
 #include "synthetic_photo.hpp"
+
+#include "petroscope/io/jpeg_encoding.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -24,7 +27,8 @@ void FitConoscopePhoto512(benchmark::State& state) {
     truth.gains = {1.1, 0.92, 1.05};
     truth.gamma = 2.1;
     const int size_px = 512;
-    const Image photo = testing::synthesize_photo(model, light, truth, size_px, 3);
+    std::vector<std::uint8_t> jpeg_file;
+    const Image photo = testing::synthesize_photo(model, light, truth, size_px, 3, &jpeg_file);
     ConoscopeFitOptions options;
     options.initial = default_photo_parameters(size_px, size_px);
     at(options.initial, PhotoParameter::thickness_um) = 150.0;  // off by a factor of 2
@@ -33,6 +37,9 @@ void FitConoscopePhoto512(benchmark::State& state) {
     options.free.fill(true);
     options.free[static_cast<std::size_t>(PhotoParameter::tilt_deg)] = false;
     options.free[static_cast<std::size_t>(PhotoParameter::azimuth_deg)] = false;
+    // As the CLI does for a JPEG photo: the encoding's systematic error is measured too.
+    const JpegEncoding encoding = jpeg_encoding_of(jpeg_file, "photo.jpg").value();
+    if (state.range(0) != 0) options.photo_encoding = [encoding](const Image& image) { return encode_like_jpeg(image, encoding); };
     double thickness = 0.0;
     for (auto _ : state) {
         const ConoscopeFitResult result = fit_conoscope_photo(photo, model, options);
@@ -42,7 +49,8 @@ void FitConoscopePhoto512(benchmark::State& state) {
     }
     state.counters["thickness_um"] = thickness;
 }
-BENCHMARK(FitConoscopePhoto512)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+// Argument: 1 with the encoding check (what the CLI does for a JPEG), 0 without (a PNG or TIFF photo).
+BENCHMARK(FitConoscopePhoto512)->Arg(1)->Arg(0)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 
 }  // namespace
 

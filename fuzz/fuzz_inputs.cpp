@@ -5,6 +5,7 @@
 #include "petroscope/core/units.hpp"
 #include "petroscope/io/data_files.hpp"
 #include "petroscope/io/interface_case.hpp"
+#include "petroscope/io/jpeg_encoding.hpp"
 #include "petroscope/io/json_reader.hpp"
 #include "petroscope/io/label_image.hpp"
 #include "petroscope/io/scene_file.hpp"
@@ -78,6 +79,8 @@ void dispatch(const std::string& name, std::string_view input) {
         parse_scene(std::string(input), scratch() / "scene.json", catalog(), spectrum);
     } else if (name == "values") {
         values(input);
+    } else if (name == "jpeg_header") {
+        (void)jpeg_encoding_of({reinterpret_cast<const std::uint8_t*>(input.data()), input.size()}, "fuzz.jpg");
     } else {
         throw std::invalid_argument("unknown fuzz target " + name);
     }
@@ -86,7 +89,7 @@ void dispatch(const std::string& name, std::string_view input) {
 }  // namespace
 
 const std::vector<std::string>& target_names() {
-    static const std::vector<std::string> names{"mineral", "thin_section", "interface_case", "scene", "values"};
+    static const std::vector<std::string> names{"mineral", "thin_section", "interface_case", "scene", "values", "jpeg_header"};
     return names;
 }
 

@@ -11,6 +11,7 @@
 #include "petroscope/io/atomic_file.hpp"
 #include "petroscope/io/data_files.hpp"
 #include "petroscope/io/image_writer.hpp"
+#include "petroscope/io/jpeg_encoding.hpp"
 #include "petroscope/io/json_sidecar.hpp"
 #include "petroscope/optics/orientation.hpp"
 #include "petroscope/spectral/color.hpp"
@@ -46,6 +47,7 @@ struct FitOptions {
     double azimuth_deg = 0.0, tilt_deg = 0.0, na = 0.85, polarizer_deg = 0.0, analyzer_deg = 90.0, surround_n = 1.54;
     int candidates = 3;
     bool json = false;
+    bool no_encoding_check = false;
     LightOptions light;
 };
 
@@ -58,13 +60,28 @@ PhotoParameter parameter_named(const std::string& option, const std::string& nam
     throw InputError(option + " '" + name + "': unknown parameter (expected one of " + names + ")");
 }
 
+/// What the report says about the photo's encoding: none (PNG, TIFF), or the JPEG's and whether the
+/// fit checked its systematic error.
+nlohmann::json encoding_json(const std::optional<JpegEncoding>& jpeg, bool checked) {
+    if (!jpeg) return "none (lossless)";
+    return {{"format", "JPEG"},
+            {"description", describe(*jpeg)},
+            {"luma_quality", jpeg->luma_quality},
+            {"chroma_quality", jpeg->chroma_quality},
+            {"standard_tables", jpeg->standard_tables},
+            {"chroma_samples_per", {jpeg->chroma_step_x, jpeg->chroma_step_y}},
+            {"checked", checked},
+            {"repeated_exactly", reproducible(*jpeg)}};
+}
+
 nlohmann::json report_json(const ConoscopeFitResult& result, const FitOptions& options, const ConoscopeFitOptions& fit_options,
-                           double seconds) {
+                           const std::optional<JpegEncoding>& jpeg, double seconds) {
     nlohmann::json parameters = nlohmann::json::object();
     for (int j = 0; j < kPhotoParameterCount; ++j) {
         const FittedValue& value = result.parameters[static_cast<std::size_t>(j)];
         nlohmann::json entry = fitted_value_json(value);
         entry["initial"] = fit_options.initial[static_cast<std::size_t>(j)];
+        if (result.encoding_shift && value.free) entry["encoding_shift"] = (*result.encoding_shift)[static_cast<std::size_t>(j)];
         parameters[std::string(photo_parameter_name(static_cast<PhotoParameter>(j)))] = entry;
     }
     nlohmann::json candidates = nlohmann::json::array();
@@ -75,6 +92,7 @@ nlohmann::json report_json(const ConoscopeFitResult& result, const FitOptions& o
     return {{"program", "petroscope 0.1.0"},
             {"command", "fit conoscope"},
             {"photo", options.photo},
+            {"photo_encoding", encoding_json(jpeg, static_cast<bool>(fit_options.photo_encoding))},
             {"mineral", options.mineral},
             {"cut", options.cut},
             {"numerical_aperture", options.na},
@@ -95,7 +113,9 @@ nlohmann::json report_json(const ConoscopeFitResult& result, const FitOptions& o
             {"seconds", seconds},
             {"model", "camera value = black + (gain * linear sRGB)^(1/gamma); figure: single-pass Jones from the exact eigenmodes "
                       "(ConoscopeTerms), blur by the local fringe approximation; see docs/fitting.md"},
-            {"sigma_meaning", "1 sigma from the Ceres covariance with a cluster-robust (sandwich) correction over blocks of the field"}};
+            {"sigma_meaning", "1 sigma from the Ceres covariance with a cluster-robust (sandwich) correction over blocks of the field; "
+                              "for a checked JPEG photo, plus encoding_shift in quadrature (the shift when the best fit is encoded "
+                              "as the photo was and fitted again)"}};
 }
 
 std::string shown(double value) { return format_significant(value, 6); }
@@ -110,6 +130,7 @@ Image camera_values_for_png(const Image& values) {
 void run_fit_conoscope(const FitOptions& options, const std::string& minerals_dir) {
     const Image photo_raw = with_option("--photo", [&] { return read_image(options.photo); });
     if (photo_raw.width == 0 || photo_raw.height == 0) throw InputError("--photo " + options.photo + ": the image is empty");
+    const std::optional<JpegEncoding> jpeg = with_option("--photo", [&] { return read_jpeg_encoding(options.photo); });
     const MineralCatalog catalog = load_mineral_catalog(minerals_directory(minerals_dir));
     const Mineral& mineral = with_option("--mineral", [&]() -> const Mineral& { return catalog.find(options.mineral); });
     const ResolvedLight light = resolve_light(options.light);
@@ -169,6 +190,10 @@ void run_fit_conoscope(const FitOptions& options, const std::string& minerals_di
         fit.free[static_cast<std::size_t>(p)] = false;
     }
 
+    if (jpeg && !options.no_encoding_check) {
+        fit.photo_encoding = [encoding = *jpeg](const Image& camera_values) { return encode_like_jpeg(camera_values, encoding); };
+    }
+
     // Reserve every output before the work starts: an unwritable folder fails at once, nothing half-written.
     const std::filesystem::path folder(options.output_dir);
     if (!std::filesystem::is_directory(folder)) throw InputError("-o " + options.output_dir + ": not a folder (create it first)");
@@ -196,7 +221,7 @@ void run_fit_conoscope(const FitOptions& options, const std::string& minerals_di
             }
         }
     }
-    const nlohmann::json report = report_json(result, options, fit, seconds);
+    const nlohmann::json report = report_json(result, options, fit, jpeg, seconds);
     write_image(camera_values_for_png(rendered), model_png, ImageFormat::png);
     write_image(camera_values_for_png(side), side_png, ImageFormat::png);
     write_image(residual, residual_tiff, ImageFormat::tiff);
@@ -211,6 +236,17 @@ void run_fit_conoscope(const FitOptions& options, const std::string& minerals_di
         std::cout << "  thickness minima (coarse cost per residual):";
         for (const auto& c : result.candidates) std::cout << ' ' << shown(c.thickness_um) << "um (" << shown(c.cost) << ")";
         std::cout << '\n';
+        if (jpeg) {
+            const std::string how = !fit.photo_encoding ? "not checked (--no-encoding-check): the 1 sigma leave out its systematic error"
+                                    : result.encoding_shift
+                                        ? "checked: it shifts the thickness by " + shown((*result.encoding_shift)[0]) + " um, included in its 1 sigma"
+                                        : "checked";
+            std::cout << "  JPEG photo (" << describe(*jpeg) << "): " << how << '\n';
+            if (fit.photo_encoding && !reproducible(*jpeg)) {
+                std::cout << "warning: the check repeats this JPEG as libjpeg 4:2:0 at quality " << jpeg->luma_quality
+                          << ", the nearest encoding it can write\n";
+            }
+        }
         for (const auto& warning : result.warnings) std::cout << "warning: " << warning << '\n';
         std::cout << "wrote " << (folder / "report.json").string() << ", model.png, side_by_side.png, residual.tiff (" << shown(seconds) << " s)\n";
     });
@@ -242,6 +278,9 @@ void add_fit_command(CLI::App& app, const std::string& minerals_dir) {
     conoscope->add_option("--analyzer-deg", options->analyzer_deg, "Analyzer direction in the lab")->capture_default_str();
     conoscope->add_option("--surround-n", options->surround_n, "Index of the medium around the slab")->capture_default_str();
     conoscope->add_option("--candidates", options->candidates, "Thickness minima refined by Ceres")->capture_default_str()->check(CLI::Range(1, 20));
+    conoscope->add_flag("--no-encoding-check", options->no_encoding_check,
+                        "For a JPEG photo: skip repeating its encoding on the best fit (faster; the 1 sigma then leave out\n"
+                        "the encoding's systematic error)");
     add_light_options(conoscope, options->light);
     add_fit_output_options(conoscope, options->output_dir, options->json);
     conoscope->callback([options, &minerals_dir] { run_fit_conoscope(*options, minerals_dir); });

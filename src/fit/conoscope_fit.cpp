@@ -334,7 +334,8 @@ void uncertainties(ceres::Problem& problem, const PhotoCost& cost, const PhotoLe
         fitted.value = result.values[k];
         fitted.free = options.free[k];
         if (!fitted.free) continue;
-        const double variance_j = sandwich(j, j);
+        const double encoding_shift = result.encoding_shift ? (*result.encoding_shift)[k] : 0.0;
+        const double variance_j = sandwich(j, j) + encoding_shift * encoding_shift;
         const double sigma = computed && variance_j >= 0.0 ? std::sqrt(variance_j) : std::numeric_limits<double>::infinity();
         double limit = kUnidentifiedSigma[k];
         if (j == static_cast<int>(PhotoParameter::thickness_um)) limit *= fitted.value;
@@ -374,6 +375,38 @@ void uncertainties(ceres::Problem& problem, const PhotoCost& cost, const PhotoLe
             result.warnings.push_back(std::string(kNames[static_cast<std::size_t>(j)]) + " is not determined by this photo; its value is not a measurement");
         }
     }
+}
+
+/// The model's photo (camera values, 0 outside the field), each pixel evaluated on a lattice of
+/// `stride_px` anchored at `anchor` + its offset: the fringe blur takes the phase's derivatives between
+/// lattice neighbours, so on the anchor's own lattice (a fit level's) the values are exactly those the fit
+/// matched there, and every other pixel is the same model.
+Image render_photo_on_lattices(const ConoscopePhotoModel& model, const PhotoParameters& values, int width_px, int height_px,
+                               const Eigen::Vector2d& anchor, int stride_px) {
+    const Eigen::Vector2d centre(at(values, PhotoParameter::center_x_px), at(values, PhotoParameter::center_y_px));
+    const double radius = at(values, PhotoParameter::field_radius_px);
+    const double reach = radius + (centre - anchor).norm() + 2.0 * stride_px;
+    Image image(width_px, height_px, 3);
+    std::vector<InterferenceTerms> terms;
+    detail::PhaseDerivatives phase;
+    detail::LinearSamples linear;
+    for (int dy = 0; dy < stride_px; ++dy) {
+        for (int dx = 0; dx < stride_px; ++dx) {
+            const detail::PhotoModelEvaluator evaluator(
+                model, detail::sample_lattice(anchor + Eigen::Vector2d(dx, dy), reach, stride_px, width_px, height_px));
+            evaluator.terms(values, terms);
+            evaluator.phase_derivatives(terms, phase);
+            evaluator.linear(terms, phase, at(values, PhotoParameter::thickness_um), at(values, PhotoParameter::blur_variance_px2), false,
+                             linear);
+            const std::vector<Eigen::Vector3d> camera = detail::camera_values(linear.rgb, values);
+            for (std::size_t k = 0; k < camera.size(); ++k) {
+                const Eigen::Vector2d& pixel = evaluator.lattice().pixels[k];
+                if ((pixel - centre).norm() > radius) continue;
+                for (int c = 0; c < 3; ++c) image.at(static_cast<int>(pixel.x()), static_cast<int>(pixel.y()), c) = static_cast<float>(camera[k][c]);
+            }
+        }
+    }
+    return image;
 }
 
 }  // namespace
@@ -499,6 +532,29 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
               [](const ThicknessCandidate& a, const ThicknessCandidate& b) { return a.cost < b.cost; });
     if (progress) progress(0.95);
 
+    if (options.photo_encoding) {
+        // The encoding's systematic error: the best-fit model's photo, encoded as the photo was, fitted
+        // again from the best fit on the same samples (a parametric bootstrap without noise; Efron &
+        // Tibshirani 1993, §10.6). Without the encoding this refit returns the best fit itself.
+        Image best_fit = render_photo_on_lattices(model, result.values, photo.width, photo.height, centre, fine->evaluator.lattice().stride_px);
+        // The fine level's own samples exactly as the fit matched them (at the sampled area's edge its
+        // derivatives are one-sided).
+        const std::vector<Eigen::Vector3d> matched = PhotoCost(*fine, options.free, options.robust_scale).model_values(result.values);
+        for (std::size_t k = 0; k < matched.size(); ++k) {
+            const Eigen::Vector2d& pixel = fine->evaluator.lattice().pixels[k];
+            for (int c = 0; c < 3; ++c) best_fit.at(static_cast<int>(pixel.x()), static_cast<int>(pixel.y()), c) = static_cast<float>(matched[k][c]);
+        }
+        const Image encoded = options.photo_encoding(best_fit);
+        const detail::PhotoLevel encoded_level(model, fine->evaluator.lattice(), colour_photo(encoded, false), 0.0,
+                                               at(start, PhotoParameter::gamma), options.saturated_level);
+        PhotoParameters refitted = result.values;
+        solve_level(encoded_level, refitted, options, basin_bounds(minima[best]), 40, 1e-8, result.iterations);
+        PhotoParameters shift{};
+        for (std::size_t k = 0; k < shift.size(); ++k) shift[k] = refitted[k] - result.values[k];
+        result.encoding_shift = shift;
+    }
+    if (progress) progress(0.98);
+
     const PhotoCost cost(*fine, options.free, options.robust_scale);
     const std::unique_ptr<ceres::Problem> final_problem = make_problem(*fine, result.values, options, bounds);
     uncertainties(*final_problem, cost, *fine, result, options);
@@ -520,21 +576,7 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
 
 Image render_conoscope_photo(const ConoscopePhotoModel& model, const PhotoParameters& values, int width_px, int height_px) {
     const Eigen::Vector2d centre(at(values, PhotoParameter::center_x_px), at(values, PhotoParameter::center_y_px));
-    const detail::PhotoModelEvaluator evaluator(
-        model, detail::sample_lattice(centre, at(values, PhotoParameter::field_radius_px), 1, width_px, height_px));
-    std::vector<InterferenceTerms> terms;
-    detail::PhaseDerivatives phase;
-    evaluator.terms(values, terms);
-    evaluator.phase_derivatives(terms, phase);
-    detail::LinearSamples linear;
-    evaluator.linear(terms, phase, at(values, PhotoParameter::thickness_um), at(values, PhotoParameter::blur_variance_px2), false, linear);
-    const std::vector<Eigen::Vector3d> camera = detail::camera_values(linear.rgb, values);
-    Image image(width_px, height_px, 3);
-    for (std::size_t k = 0; k < camera.size(); ++k) {
-        const Eigen::Vector2d& pixel = evaluator.lattice().pixels[k];
-        for (int c = 0; c < 3; ++c) image.at(static_cast<int>(pixel.x()), static_cast<int>(pixel.y()), c) = static_cast<float>(camera[k][c]);
-    }
-    return image;
+    return render_photo_on_lattices(model, values, width_px, height_px, centre, 1);
 }
 
 }  // namespace petroscope

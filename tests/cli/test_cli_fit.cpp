@@ -3,6 +3,7 @@
 #include "support/cli_fixture.hpp"
 
 #include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include <algorithm>
 
@@ -35,7 +36,41 @@ TEST_F(FitCli, RenderedFigureFitsBackWithReportAndImages) {
     EXPECT_NEAR(thickness["value"].get<double>(), 400.0, 4.0);
     EXPECT_GT(thickness["sigma"].get<double>(), 0.0);
     EXPECT_FALSE(report["candidates"].empty());
+    EXPECT_EQ(report["photo_encoding"], "none (lossless)");
+    EXPECT_FALSE(thickness.contains("encoding_shift"));
     EXPECT_NE(run.out.find("thickness_um = "), std::string::npos);
+}
+
+// A JPEG photo: the report names its encoding, and the fit checks the encoding's systematic error
+// (docs/fitting.md); the 1σ includes the shift, unless the check is switched off.
+TEST_F(FitCli, JpegPhotoReportsItsEncodingAndItsShift) {
+    const auto png = quartz_photo();
+    const std::filesystem::path jpeg = scratch() / "photo.jpg";
+    ASSERT_TRUE(cv::imwrite(jpeg.string(), cv::imread(png.string(), cv::IMREAD_COLOR), {cv::IMWRITE_JPEG_QUALITY, 90}));
+    const testing::CommandResult run =
+        petroscope("fit conoscope --photo " + testing::quoted(jpeg) + " --mineral quartz --thickness 250um --fix field_radius_px=64 -o " +
+                   testing::quoted(out()));
+    ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+    const nlohmann::json report = nlohmann::json::parse(testing::read_text(out() / "report.json"));
+    EXPECT_EQ(report["photo_encoding"]["description"], "quality 90, 4:2:0");
+    EXPECT_TRUE(report["photo_encoding"]["checked"].get<bool>());
+    EXPECT_TRUE(report["photo_encoding"]["repeated_exactly"].get<bool>());
+    const nlohmann::json& thickness = report["parameters"]["thickness_um"];
+    ASSERT_TRUE(thickness.contains("encoding_shift"));
+    const double shift = thickness["encoding_shift"].get<double>();
+    EXPECT_GE(thickness["sigma"].get<double>(), std::abs(shift));
+    EXPECT_NEAR(thickness["value"].get<double>(), 400.0, 4.0);
+    EXPECT_NE(run.out.find("JPEG photo (quality 90, 4:2:0): checked"), std::string::npos) << run.out;
+
+    const testing::CommandResult unchecked =
+        petroscope("fit conoscope --photo " + testing::quoted(jpeg) + " --mineral quartz --thickness 250um --fix field_radius_px=64 "
+                   "--no-encoding-check -o " + testing::quoted(out()));
+    ASSERT_EQ(unchecked.exit_code, 0) << unchecked.out << unchecked.err;
+    const nlohmann::json plain = nlohmann::json::parse(testing::read_text(out() / "report.json"));
+    EXPECT_FALSE(plain["photo_encoding"]["checked"].get<bool>());
+    EXPECT_FALSE(plain["parameters"]["thickness_um"].contains("encoding_shift"));
+    EXPECT_NE(unchecked.out.find("not checked"), std::string::npos) << unchecked.out;
+
 }
 
 TEST_F(FitCli, BadPhotosAndOptionsAreRefused) {

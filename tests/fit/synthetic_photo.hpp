@@ -12,6 +12,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <random>
 #include <string>
@@ -70,9 +71,10 @@ inline ConoscopePhotoModel photo_model(const Mineral& mineral, Cut cut, const Ph
 }
 
 /// What a camera makes of linear RGB (CV_64FC3, channels R, G, B): `tone` per channel, Gaussian noise of
-/// σ = `noise`, 8-bit quantisation and JPEG at `jpeg_quality` (0: none); camera values 0 … 1.
+/// σ = `noise`, 8-bit quantisation and JPEG at `jpeg_quality` (0: none); camera values 0 … 1. The JPEG
+/// file's bytes go to `jpeg_file` when given.
 inline Image camera_image(const cv::Mat& linear, const std::function<double(int, double)>& tone, double noise_sigma, int jpeg_quality,
-                          unsigned seed) {
+                          unsigned seed, std::vector<std::uint8_t>* jpeg_file = nullptr) {
     std::mt19937 random(seed);
     std::normal_distribution<double> noise(0.0, noise_sigma);
     cv::Mat encoded(linear.rows, linear.cols, CV_8UC3);
@@ -88,6 +90,7 @@ inline Image camera_image(const cv::Mat& linear, const std::function<double(int,
         std::vector<unsigned char> bytes;
         cv::imencode(".jpg", encoded, bytes, {cv::IMWRITE_JPEG_QUALITY, jpeg_quality});
         encoded = cv::imdecode(bytes, cv::IMREAD_COLOR);
+        if (jpeg_file != nullptr) *jpeg_file = std::move(bytes);
     }
     Image photo(linear.cols, linear.rows, 3);
     for (int y = 0; y < linear.rows; ++y) {
@@ -98,9 +101,10 @@ inline Image camera_image(const cv::Mat& linear, const std::function<double(int,
     return photo;
 }
 
-/// The photo (camera values 0 … 1, 3 channels) of `size_px`² that `truth` describes; `seed` for the noise.
+/// The photo (camera values 0 … 1, 3 channels) of `size_px`² that `truth` describes; `seed` for the noise;
+/// the JPEG file's bytes to `jpeg_file` when given.
 inline Image synthesize_photo(const ConoscopePhotoModel& model, const PhotoLight& light, const PhotoTruth& truth, int size_px,
-                              unsigned seed) {
+                              unsigned seed, std::vector<std::uint8_t>* jpeg_file = nullptr) {
     // Render only the field: a square of side 2⌈R⌉ + 2 around it, with the NA scaled to match.
     const double radius_px = truth.radius_scale * 0.5 * size_px;
     const int render_size = 2 * static_cast<int>(std::ceil(radius_px)) + 2;
@@ -137,7 +141,7 @@ inline Image synthesize_photo(const ConoscopePhotoModel& model, const PhotoLight
     if (truth.blur_px > 0.0) cv::GaussianBlur(linear, linear, cv::Size(0, 0), truth.blur_px);
     return camera_image(
         linear, [&truth](int c, double value) { return std::pow(std::max(truth.gains[c] * value, 0.0), 1.0 / truth.gamma); }, truth.noise,
-        truth.jpeg_quality, seed);
+        truth.jpeg_quality, seed, jpeg_file);
 }
 
 }  // namespace petroscope::testing

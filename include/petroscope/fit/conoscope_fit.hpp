@@ -69,6 +69,11 @@ struct ConoscopeFitOptions {
     int candidates = 3;               // thickness minima refined by Ceres
     double robust_scale = 0.05;       // Cauchy loss: residuals (in photo values, 0 … 1) beyond this count less
     double saturated_level = 0.995;   // pixels with a channel at or above this are not used
+    /// The lossy encoding the photo went through (a JPEG's: io/jpeg_encoding.hpp), on camera values
+    /// 0 … 1. When given, the fit measures the systematic error the encoding causes: the best-fit model's
+    /// photo is encoded the same way and fitted again from the best fit; the shift of every parameter is
+    /// reported and added to its 1σ in quadrature (docs/fitting.md, "The photo's encoding").
+    std::function<Image(const Image&)> photo_encoding;
 };
 
 /// One minimum of the cost over thickness on the unblurred photo, at the geometry found on the blurred
@@ -92,6 +97,9 @@ struct ConoscopeFitResult {
     std::array<FittedValue, kPhotoParameterCount> parameters{};
     std::vector<ThicknessCandidate> candidates;  // best first
     std::vector<std::string> warnings;
+    /// The shift of each parameter when the best-fit model's photo goes through options.photo_encoding and
+    /// is fitted again: the encoding's systematic error, included in each 1σ. None without an encoding.
+    std::optional<PhotoParameters> encoding_shift;
     double rms_residual = 0.0;       // photo values, over the pixels used
     double explained_variance = 0.0; // R² of the photo's values over the pixels used
     int pixels_used = 0;
