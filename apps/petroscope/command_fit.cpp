@@ -237,7 +237,7 @@ void run_fit_conoscope(const FitOptions& options, const std::string& minerals_di
         for (const auto& c : result.candidates) std::cout << ' ' << shown(c.thickness_um) << "um (" << shown(c.cost) << ")";
         std::cout << '\n';
         if (jpeg) {
-            const std::string how = !fit.photo_encoding ? "not checked (--no-encoding-check): the 1 sigma leave out its systematic error"
+            const std::string how = !fit.photo_encoding ? "not checked (--no-encoding-check): the 1-sigma values leave out its systematic error"
                                     : result.encoding_shift
                                         ? "checked: it shifts the thickness by " + shown((*result.encoding_shift)[0]) + " um, included in its 1 sigma"
                                         : "checked";
@@ -279,7 +279,7 @@ void add_fit_command(CLI::App& app, const std::string& minerals_dir) {
     conoscope->add_option("--surround-n", options->surround_n, "Index of the medium around the slab")->capture_default_str();
     conoscope->add_option("--candidates", options->candidates, "Thickness minima refined by Ceres")->capture_default_str()->check(CLI::Range(1, 20));
     conoscope->add_flag("--no-encoding-check", options->no_encoding_check,
-                        "For a JPEG photo: skip repeating its encoding on the best fit (faster; the 1 sigma then leave out\n"
+                        "For a JPEG photo: skip repeating its encoding on the best fit (faster; the 1-sigma values then leave out\n"
                         "the encoding's systematic error)");
     add_light_options(conoscope, options->light);
     add_fit_output_options(conoscope, options->output_dir, options->json);

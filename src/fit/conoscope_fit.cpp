@@ -532,6 +532,9 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
               [](const ThicknessCandidate& a, const ThicknessCandidate& b) { return a.cost < b.cost; });
     if (progress) progress(0.95);
 
+    // One cost on the fine level for the encoding check, the uncertainties and the statistics: the figure's
+    // terms at the best fit's geometry are computed once and kept by it.
+    const PhotoCost cost(*fine, options.free, options.robust_scale);
     if (options.photo_encoding) {
         // The encoding's systematic error: the best-fit model's photo, encoded as the photo was, fitted
         // again from the best fit on the same samples (a parametric bootstrap without noise; Efron &
@@ -539,13 +542,13 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
         Image best_fit = render_photo_on_lattices(model, result.values, photo.width, photo.height, centre, fine->evaluator.lattice().stride_px);
         // The fine level's own samples exactly as the fit matched them (at the sampled area's edge its
         // derivatives are one-sided).
-        const std::vector<Eigen::Vector3d> matched = PhotoCost(*fine, options.free, options.robust_scale).model_values(result.values);
+        const std::vector<Eigen::Vector3d> matched = cost.model_values(result.values);
         for (std::size_t k = 0; k < matched.size(); ++k) {
             const Eigen::Vector2d& pixel = fine->evaluator.lattice().pixels[k];
             for (int c = 0; c < 3; ++c) best_fit.at(static_cast<int>(pixel.x()), static_cast<int>(pixel.y()), c) = static_cast<float>(matched[k][c]);
         }
         const Image encoded = options.photo_encoding(best_fit);
-        const detail::PhotoLevel encoded_level(model, fine->evaluator.lattice(), colour_photo(encoded, false), 0.0,
+        const detail::PhotoLevel encoded_level(model, fine->evaluator.lattice(), encoded, 0.0,
                                                at(start, PhotoParameter::gamma), options.saturated_level);
         PhotoParameters refitted = result.values;
         solve_level(encoded_level, refitted, options, basin_bounds(minima[best]), 40, 1e-8, result.iterations);
@@ -555,7 +558,6 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
     }
     if (progress) progress(0.98);
 
-    const PhotoCost cost(*fine, options.free, options.robust_scale);
     const std::unique_ptr<ceres::Problem> final_problem = make_problem(*fine, result.values, options, bounds);
     uncertainties(*final_problem, cost, *fine, result, options);
     const Statistics statistics = residual_statistics(*fine, cost, result.values);

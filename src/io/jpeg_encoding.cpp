@@ -100,11 +100,11 @@ std::optional<JpegEncoding> jpeg_encoding_of(std::span<const std::uint8_t> bytes
     while (position + 2 <= bytes.size()) {
         if (bytes[position] != 0xFF) throw malformed("expected a marker at byte " + std::to_string(position));
         const std::uint8_t marker = bytes[position + 1];
-        position += 2;
-        if (marker == 0xFF) {  // fill byte before a marker
-            --position;
+        if (marker == 0xFF) {  // a fill byte before a marker
+            ++position;
             continue;
         }
+        position += 2;
         if (marker == 0x01 || (marker >= 0xD0 && marker <= 0xD8)) continue;  // markers without a length
         if (marker == 0xD9 || marker == 0xDA) break;                           // end of image, start of scan
         if (position + 2 > bytes.size()) break;
