@@ -72,4 +72,18 @@ std::string joined_command_line(int argc, char** argv) {
     return line;
 }
 
+std::array<double, 3> euler_angles_deg(const std::string& option, const std::string& text) {
+    const auto parts = split(text, ',');
+    std::array<double, 3> angles{};
+    for (std::size_t i = 0; i < angles.size(); ++i) {
+        const auto value = parts.size() == angles.size() ? parse_double(parts[i]) : std::nullopt;
+        if (!value) {
+            throw InputError(option + " '" + text + "': expected three angles in degrees, ALPHA,BETA,GAMMA (ZYZ: R = Rz(ALPHA)·Ry(BETA)·Rz(GAMMA), "
+                             "docs/conventions.md)");
+        }
+        angles[i] = *value;
+    }
+    return angles;
+}
+
 }  // namespace petroscope::cli

@@ -18,20 +18,6 @@
 namespace petroscope::cli {
 namespace {
 
-Eigen::Vector3d parse_euler(const std::string& text) {
-    const auto parts = split(text, ',');
-    Eigen::Vector3d angles;
-    if (parts.size() == 3) {
-        for (int i = 0; i < 3; ++i) {
-            const auto value = parse_double(parts[static_cast<std::size_t>(i)]);
-            if (!value) break;
-            angles[i] = *value;
-            if (i == 2) return angles;
-        }
-    }
-    throw InputError("--euler '" + text + "': expected three angles in degrees, a,b,c (ZYZ: R = Rz(a)·Ry(b)·Rz(c))");
-}
-
 class ConoscopeOptions final : public FrameOptions {
 public:
     std::string command() const override { return "conoscope"; }
@@ -121,7 +107,7 @@ PreparedFrame ConoscopeOptions::prepare(FrameContext& context) const {
     const Eigen::Vector3d reference_n = mineral.principal_n(mineral.reference_wavelength_nm);
     std::string cut_used;
     if (!euler_.empty()) {
-        const Eigen::Vector3d angles = parse_euler(euler_);
+        const std::array<double, 3> angles = euler_angles_deg("--euler", euler_);
         settings.crystal_axes = euler_zyz_deg(angles[0], angles[1], angles[2]);
     } else {
         const Cut cut = !cut_.empty() ? parse_cut(cut_)

@@ -54,17 +54,6 @@ std::array<int, 4> parse_region(const std::string& text) {
     return region;
 }
 
-Eigen::Matrix3d parse_euler(const std::string& text) {
-    const auto parts = split(text, ',');
-    std::array<double, 3> angles{};
-    for (std::size_t i = 0; i < 3; ++i) {
-        const auto value = parts.size() == 3 ? parse_double(parts[i]) : std::nullopt;
-        if (!value) throw InputError("--euler-deg '" + text + "': expected ALPHA,BETA,GAMMA in degrees (ZYZ, docs/conventions.md)");
-        angles[i] = *value;
-    }
-    return euler_zyz_deg(angles[0], angles[1], angles[2]);
-}
-
 /// The grain's colour in photo k, from its region or mask.
 GrainColour measure(const GrainFitOptions& options, std::size_t k, const Image& photo) {
     const std::string& file = options.photos[k];
@@ -170,7 +159,8 @@ void run_fit_orthoscope(const GrainFitOptions& options, const std::string& miner
     if (!options.euler.empty()) {
         if (!options.orientation.empty() && options.orientation != "known") throw InputError("--euler-deg gives the orientation: it needs --orientation known (or none)");
         fit.orientation = GrainOrientation::known;
-        fit.known_axes = parse_euler(options.euler);
+        const std::array<double, 3> angles = euler_angles_deg("--euler-deg", options.euler);
+        fit.known_axes = euler_zyz_deg(angles[0], angles[1], angles[2]);
     } else if (!options.orientation.empty()) {
         fit.orientation = with_option("--orientation", [&] { return parse_grain_orientation(options.orientation); });
         if (fit.orientation == GrainOrientation::known) throw InputError("--orientation known: give the orientation with --euler-deg ALPHA,BETA,GAMMA");

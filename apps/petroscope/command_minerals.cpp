@@ -14,7 +14,7 @@
 namespace petroscope::cli {
 namespace {
 
-struct ShowOptions {
+struct MineralShowOptions {
     std::string name;
     std::string wavelength = "589.3nm";
     bool json = false;
@@ -92,7 +92,7 @@ void add_minerals_command(CLI::App& app, std::string& minerals_dir) {
         }
     });
 
-    auto options = std::make_shared<ShowOptions>();
+    auto options = std::make_shared<MineralShowOptions>();
     CLI::App* show = minerals->add_subcommand("show", "Principal indices, optic sign, 2V and birefringence of one mineral");
     show->add_option("name", options->name, "Mineral name or alias (case-insensitive)")->required();
     show->add_option("--wavelength", options->wavelength, "Wavelength, e.g. 589nm or 0.55um (default 589.3nm)");

@@ -34,7 +34,7 @@ struct RandomOptions {
     std::string output;
 };
 
-struct ShowOptions {
+struct SectionShowOptions {
     std::string path;
     bool json = false;
 };
@@ -152,7 +152,7 @@ struct MineralStatistics {
     int own_thickness = 0;
 };
 
-void run_show(const ShowOptions& options, const std::string& minerals_dir) {
+void run_show(const SectionShowOptions& options, const std::string& minerals_dir) {
     const MineralCatalog catalog = load_mineral_catalog(minerals_directory(minerals_dir));
     const std::filesystem::path description = thin_section_description_path(options.path);
     const ThinSection section = read_thin_section(description, catalog);
@@ -254,7 +254,7 @@ void add_section_command(CLI::App& app, const std::string& minerals_dir) {
     make->add_option("-o,--output", random->output, "Folder to write (created if missing; its parent must exist)")->required();
     make->callback([random, &minerals_dir] { run_random(*random, minerals_dir); });
 
-    auto show_options = std::make_shared<ShowOptions>();
+    auto show_options = std::make_shared<SectionShowOptions>();
     CLI::App* show = section->add_subcommand("show", "Summarise a thin section: size, thickness, grains per mineral");
     show->add_option("section", show_options->path, "A section folder (its section.txt) or a description file")->required();
     show->add_flag("--json", show_options->json, "Print JSON");

@@ -13,11 +13,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 namespace petroscope {
 namespace {
-
-constexpr double kDegree = M_PI / 180.0;
 
 const InterfaceWave& wave_of(const InterfaceResult& result, InterfaceWave::Kind kind, const std::string& mode = "") {
     for (const InterfaceWave& wave : result.waves) {
@@ -50,7 +49,7 @@ TEST(Interface, CalciteAtNormalIncidenceSplitsIntoOrdinaryAndExtraordinary) {
     // Walk-off of the e ray: tan α = ½ n_e(θ)² sin 2θ (1/n_e² − 1/n_o²) with θ = 45° (Born & Wolf §15.3.3).
     const double walk_off = std::atan(0.5 * n_e45 * n_e45 * (1.0 / (n_e * n_e) - 1.0 / (n_o * n_o)));
     EXPECT_NEAR(std::acos(e.ray_direction.dot(e.direction)), walk_off, 1e-12);
-    EXPECT_NEAR(walk_off / kDegree, 6.2, 0.05);
+    EXPECT_NEAR(walk_off * 180.0 / std::numbers::pi, 6.2, 0.05);
     EXPECT_LT(o.ray_direction.cross(o.direction).norm(), 1e-12);  // o ray along its wave normal
     // Polarizations: o ⟂ the principal plane (x–z here, containing the normal and the axis), e in it.
     EXPECT_NEAR(std::abs(o.e_field.x()) + std::abs(o.e_field.z()), 0.0, 1e-12);
@@ -61,7 +60,7 @@ TEST(Interface, CalciteAtNormalIncidenceSplitsIntoOrdinaryAndExtraordinary) {
 // The verification suite (src/verification) at the acceptance sizes of issue 3: Fresnel, Snell and
 // coplanarity sweeps, total internal reflection, Brewster, uniaxial laws, R + T = 1 over 10^6 random cases
 // and 10^4 on or within 1e-9 rad of optic axes, and agreement with the 4×4 solver over 10^4 cases.
-TEST(Interface, VerificationSuiteAtAcceptanceSizes) {
+TEST(InterfaceAcceptance, VerificationSuiteAtAcceptanceSizes) {
     InterfaceSuiteSize size;
     size.random_energy_cases = 1000000;
     size.near_axis_cases = 20000;

@@ -151,7 +151,7 @@ NoiseCurve flat_region_noise(bool stratified) {
 
 // Plain Monte Carlo (every number drawn independently): the noise falls as 1/√spp. The renderer's
 // stratified samples fall at least as fast and are below plain Monte Carlo at every count.
-TEST(RenderScenes, NoiseFallsAsOneOverSquareRootOfSamples) {
+TEST(RenderScenesAcceptance, NoiseFallsAsOneOverSquareRootOfSamples) {
     const NoiseCurve independent = flat_region_noise(false);
     EXPECT_NEAR(independent.slope, -0.5, 0.1);
     const NoiseCurve stratified = flat_region_noise(true);
