@@ -54,15 +54,15 @@ void ImageResult::write(const Image& linear_rgb, const nlohmann::json& sidecar) 
 
 double positive_length_um(const std::string& option, const std::string& text) {
     const double value = with_option(option, [&] { return parse_length_um(text); });
-    if (!(value > 0.0)) throw InputError(option + " '" + text + "': must be > 0");
+    if (!(value > 0.0)) throw InputError(option + " " + quote_input(text) + ": must be > 0");
     return value;
 }
 
 std::pair<double, double> length_range_um(const std::string& option, const std::string& text) {
     const auto parts = split(text, ':');
-    if (parts.size() != 2) throw InputError(option + " '" + text + "': expected MIN:MAX with units, e.g. 10um:5mm");
+    if (parts.size() != 2) throw InputError(option + " " + quote_input(text) + ": expected MIN:MAX with units, e.g. 10um:5mm");
     const double low = positive_length_um(option, parts[0]), high = positive_length_um(option, parts[1]);
-    if (!(high > low)) throw InputError(option + " '" + text + "': the maximum must exceed the minimum");
+    if (!(high > low)) throw InputError(option + " " + quote_input(text) + ": the maximum must exceed the minimum");
     return {low, high};
 }
 
@@ -78,7 +78,7 @@ std::array<double, 3> euler_angles_deg(const std::string& option, const std::str
     for (std::size_t i = 0; i < angles.size(); ++i) {
         const auto value = parts.size() == angles.size() ? parse_double(parts[i]) : std::nullopt;
         if (!value) {
-            throw InputError(option + " '" + text + "': expected three angles in degrees, ALPHA,BETA,GAMMA (ZYZ: R = Rz(ALPHA)·Ry(BETA)·Rz(GAMMA), "
+            throw InputError(option + " " + quote_input(text) + ": expected three angles in degrees, ALPHA,BETA,GAMMA (ZYZ: R = Rz(ALPHA)·Ry(BETA)·Rz(GAMMA), "
                              "docs/conventions.md)");
         }
         angles[i] = *value;

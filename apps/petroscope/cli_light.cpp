@@ -3,6 +3,7 @@
 #include "cli_common.hpp"
 #include "frame_command.hpp"
 
+#include "petroscope/core/text.hpp"
 #include "petroscope/core/units.hpp"
 #include "petroscope/io/data_files.hpp"
 #include "petroscope/spectral/color.hpp"
@@ -23,7 +24,7 @@ ResolvedLight resolve_light(const LightOptions& options) {
     ResolvedLight light;
     if (!options.wavelength.empty()) {
         const double wavelength_nm = with_option("--wavelength", [&] { return parse_wavelength_nm(options.wavelength); });
-        if (!(wavelength_nm > 0.0)) throw InputError("--wavelength '" + options.wavelength + "': must be > 0");
+        if (!(wavelength_nm > 0.0)) throw InputError("--wavelength " + quote_input(options.wavelength) + ": must be > 0");
         light.wavelengths_nm = {wavelength_nm};
     } else {
         light.grid = with_option("--wavelengths", [&] { return WavelengthGrid::parse(options.wavelength_grid); });

@@ -60,7 +60,7 @@ Eigen::Vector4d parse_polarization(const std::string& text) {
             return {1, std::cos(phi), std::sin(phi), 0};
         }
     }
-    throw InputError("--polarization '" + text + "': expected unpolarized, linear:ANGLE (degrees from +x), circular or circular:left");
+    throw InputError("--polarization " + quote_input(text) + ": expected unpolarized, linear:ANGLE (degrees from +x), circular or circular:left");
 }
 
 Image normalised_gray(const Image& image) {
@@ -84,8 +84,8 @@ PreparedFrame ConicalOptions::prepare(FrameContext& context) const {
     const double wavelength_nm = with_option("--wavelength", [&] { return parse_wavelength_nm(wavelength_); });
     if (!(wavelength_nm > 0.0)) throw InputError("--wavelength must be > 0");
     if (size_px_ < 64 || size_px_ > 4096) throw InputError("--size " + std::to_string(size_px_) + " is out of range (64 to 4096)");
-    if (mode_ != "wave" && mode_ != "ray") throw InputError("--mode '" + mode_ + "': expected wave or ray");
-    if (beam_ != "gaussian" && beam_ != "pinhole") throw InputError("--beam '" + beam_ + "': expected gaussian or pinhole");
+    if (mode_ != "wave" && mode_ != "ray") throw InputError("--mode " + quote_input(mode_) + ": expected wave or ray");
+    if (beam_ != "gaussian" && beam_ != "pinhole") throw InputError("--beam " + quote_input(beam_) + ": expected gaussian or pinhole");
     if (!std::isfinite(z_)) throw InputError("--z must be a finite number");
     const Eigen::Vector4d stokes = parse_polarization(polarization_);
 

@@ -57,7 +57,7 @@ PhotoParameter parameter_named(const std::string& option, const std::string& nam
     }
     std::string names;
     for (int j = 0; j < kPhotoParameterCount; ++j) names += (j ? ", " : "") + std::string(photo_parameter_name(static_cast<PhotoParameter>(j)));
-    throw InputError(option + " '" + name + "': unknown parameter (expected one of " + names + ")");
+    throw InputError(option + " " + quote_input(name) + ": unknown parameter (expected one of " + names + ")");
 }
 
 /// What the report says about the photo's encoding: none (PNG, TIFF), or the JPEG's and whether the
@@ -177,14 +177,14 @@ void run_fit_conoscope(const FitOptions& options, const std::string& minerals_di
         if (found == free_groups().end()) {
             std::string names;
             for (const auto& [name, members] : free_groups()) names += (names.empty() ? "" : ", ") + name;
-            throw InputError("--free '" + group + "': unknown group (expected any of " + names + ")");
+            throw InputError("--free " + quote_input(group) + ": unknown group (expected any of " + names + ")");
         }
         for (const PhotoParameter p : found->second) fit.free[static_cast<std::size_t>(p)] = true;
     }
     for (const std::string& assignment : options.fixed) {
         const auto parts = split(assignment, '=');
         const auto value = parts.size() == 2 ? parse_double(parts[1]) : std::nullopt;
-        if (!value) throw InputError("--fix '" + assignment + "': expected NAME=VALUE, e.g. field_radius_px=250 or gamma=2.2");
+        if (!value) throw InputError("--fix " + quote_input(assignment) + ": expected NAME=VALUE, e.g. field_radius_px=250 or gamma=2.2");
         const PhotoParameter p = parameter_named("--fix", parts[0]);
         fit.initial[static_cast<std::size_t>(p)] = *value;
         fit.free[static_cast<std::size_t>(p)] = false;

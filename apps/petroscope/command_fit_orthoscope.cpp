@@ -47,7 +47,7 @@ std::array<int, 4> parse_region(const std::string& text) {
     for (std::size_t i = 0; i < 4; ++i) {
         const auto value = parts.size() == 4 ? parse_double(parts[i]) : std::nullopt;
         if (!value || *value != std::floor(*value) || std::abs(*value) > 1e6) {
-            throw InputError("--region '" + text + "': expected X,Y,WIDTH,HEIGHT in whole pixels (top-left corner first), e.g. 120,80,40,40");
+            throw InputError("--region " + quote_input(text) + ": expected X,Y,WIDTH,HEIGHT in whole pixels (top-left corner first), e.g. 120,80,40,40");
         }
         region[i] = static_cast<int>(*value);
     }
@@ -179,7 +179,7 @@ void run_fit_orthoscope(const GrainFitOptions& options, const std::string& miner
         if (!options.stages.empty()) {
             const std::string& text = per_photo(options.stages, k, "--stage-deg", options.photos.size());
             const auto value = parse_double(text);
-            if (!value || !std::isfinite(*value)) throw InputError("--stage-deg '" + text + "': expected an angle in degrees");
+            if (!value || !std::isfinite(*value)) throw InputError("--stage-deg " + quote_input(text) + ": expected an angle in degrees");
             photo.stage_deg = *value;
         }
         if (!options.plates.empty()) {

@@ -2,6 +2,7 @@
 #include "cli_common.hpp"
 
 #include "petroscope/core/error.hpp"
+#include "petroscope/core/text.hpp"
 #include "petroscope/core/units.hpp"
 #include "petroscope/io/data_files.hpp"
 #include "petroscope/minerals/mineral.hpp"
@@ -99,7 +100,7 @@ void add_minerals_command(CLI::App& app, std::string& minerals_dir) {
     show->add_flag("--json", options->json, "Print JSON (keys n_alpha, n_beta, n_gamma, two_v_deg, sign, birefringence, …)");
     show->callback([options, &minerals_dir] {
         const double wavelength_nm = with_option("--wavelength", [&] { return parse_wavelength_nm(options->wavelength); });
-        if (!(wavelength_nm > 0.0)) throw InputError("--wavelength must be positive, got '" + options->wavelength + "'");
+        if (!(wavelength_nm > 0.0)) throw InputError("--wavelength must be positive, got " + quote_input(options->wavelength));
         const MineralCatalog catalog = load_mineral_catalog(minerals_directory(minerals_dir));
         const Mineral& mineral = catalog.find(options->name);
         for (const auto& warning : mineral.range_warnings({wavelength_nm})) std::cerr << "petroscope: warning: " << warning << '\n';

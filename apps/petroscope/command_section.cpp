@@ -44,7 +44,7 @@ std::vector<double> parse_number_list(const std::string& option, const std::stri
     std::vector<double> values;
     for (const std::string& part : split(text, ',')) {
         const auto value = parse_double(part);
-        if (!value) throw InputError(option + " '" + text + "': expected comma-separated numbers, e.g. 5,3,1");
+        if (!value) throw InputError(option + " " + quote_input(text) + ": expected comma-separated numbers, e.g. 5,3,1");
         values.push_back(*value);
     }
     return values;
@@ -53,7 +53,7 @@ std::vector<double> parse_number_list(const std::string& option, const std::stri
 // "0um,60um[,x|y]" → the wedge of `section`.
 void apply_wedge(const std::string& text, ThinSection& section) {
     const auto parts = split(text, ',');
-    const std::string expected = "--wedge '" + text + "': expected START,END[,x|y], two thicknesses with units (e.g. 0um,60um) and the "
+    const std::string expected = "--wedge " + quote_input(text) + ": expected START,END[,x|y], two thicknesses with units (e.g. 0um,60um) and the "
                                  "direction (x: left to right, the default; y: top to bottom)";
     if (parts.size() < 2 || parts.size() > 3 || (parts.size() == 3 && parts[2] != "x" && parts[2] != "y")) throw InputError(expected);
     section.thickness_kind = ThicknessKind::wedge;
@@ -94,7 +94,7 @@ void run_random(const RandomOptions& options, const std::string& minerals_dir) {
     const MineralCatalog catalog = load_mineral_catalog(minerals_directory(minerals_dir));
     VoronoiSectionSettings settings;
     for (const std::string& name : split(options.minerals, ',')) {
-        if (name.empty()) throw InputError("--minerals '" + options.minerals + "': expected comma-separated mineral names, e.g. quartz,orthoclase,biotite");
+        if (name.empty()) throw InputError("--minerals " + quote_input(options.minerals) + ": expected comma-separated mineral names, e.g. quartz,orthoclase,biotite");
         settings.minerals.push_back(with_option("--minerals", [&] { return catalog.find(name).name; }));
     }
     if (!options.weights.empty()) settings.weights = parse_number_list("--weights", options.weights);

@@ -69,7 +69,7 @@ struct RenderOptionSet {
 void check_parameter(const SweepParameter& parameter, const RenderOptionSet& options, const std::string& command) {
     const CLI::Option* option = options.find(parameter.name);
     if (option == nullptr || !RenderOptionSet::sweepable(option)) {
-        throw InputError("--vary: '" + parameter.name + "' is not a numeric option of " + command + "; these can be swept: " +
+        throw InputError("--vary: " + quote_input(parameter.name) + " is not a numeric option of " + command + "; these can be swept: " +
                          options.sweepable_names());
     }
     if (option->count() > 0) {
@@ -155,7 +155,7 @@ void run_sweep(const SweepOptions& sweep, const RenderOptionSet& options, const 
         plan.parameters.push_back(std::move(parameter));
     }
     if (sweep.animation != "gif" && sweep.animation != "mp4" && sweep.animation != "none") {
-        throw InputError("--animation '" + sweep.animation + "': expected gif, mp4 or none");
+        throw InputError("--animation " + quote_input(sweep.animation) + ": expected gif, mp4 or none");
     }
     if (!(sweep.fps > 0.0 && sweep.fps <= 100.0)) throw InputError("--fps must be > 0 and <= 100");
     if (sweep.thumbnail_px < 16 || sweep.thumbnail_px > 4096) throw InputError("--thumbnail must be 16 to 4096 px");

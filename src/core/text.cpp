@@ -7,11 +7,80 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 namespace petroscope {
 
 InputError located_error(const std::string& file, int line, const std::string& what) {
     return InputError(file + ":" + std::to_string(line) + ": " + what);
+}
+
+namespace {
+
+/// The length of the UTF-8 sequence that starts `text` and its code point, or 0 when the bytes there are
+/// not a well-formed sequence (RFC 3629, section 4: no overlong forms, no surrogates, at most U+10FFFF).
+std::pair<std::size_t, char32_t> utf8_sequence(std::string_view text) {
+    const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(text[i]); };
+    const unsigned char lead = byte(0);
+    std::size_t length = 0;
+    char32_t code = 0, least = 0;
+    if (lead < 0x80) return {1, lead};
+    if (lead >= 0xC2 && lead <= 0xDF) length = 2, code = lead & 0x1Fu, least = 0x80;
+    else if (lead >= 0xE0 && lead <= 0xEF) length = 3, code = lead & 0x0Fu, least = 0x800;
+    else if (lead >= 0xF0 && lead <= 0xF4) length = 4, code = lead & 0x07u, least = 0x10000;
+    else return {0, 0};
+    if (text.size() < length) return {0, 0};
+    for (std::size_t i = 1; i < length; ++i) {
+        if ((byte(i) & 0xC0u) != 0x80u) return {0, 0};
+        code = (code << 6) | (byte(i) & 0x3Fu);
+    }
+    if (code < least || code > 0x10FFFF || (code >= 0xD800 && code <= 0xDFFF)) return {0, 0};
+    return {length, code};
+}
+
+/// Characters a terminal does not show as themselves: C0 and C1 controls, DEL, and the invisible
+/// line separators and bidirectional controls of Unicode (U+2028/9, U+200E/F, U+202A…E, U+2066…9).
+bool shown_escaped(char32_t code) {
+    return code < 0x20 || (code >= 0x7F && code <= 0x9F) || code == 0x200E || code == 0x200F || (code >= 0x2028 && code <= 0x202E) ||
+           (code >= 0x2066 && code <= 0x2069);
+}
+
+void append_escape(std::string& out, char32_t code) {
+    char buffer[12];
+    switch (code) {
+        case '\n': out += "\\n"; return;
+        case '\r': out += "\\r"; return;
+        case '\t': out += "\\t"; return;
+        default: break;
+    }
+    if (code < 0x100) std::snprintf(buffer, sizeof buffer, "\\x%02x", static_cast<unsigned>(code));
+    else std::snprintf(buffer, sizeof buffer, "\\u%04x", static_cast<unsigned>(code));
+    out += buffer;
+}
+
+}  // namespace
+
+std::string quote_input(std::string_view text, std::size_t max_characters) {
+    std::string out = "'";
+    std::size_t at = 0, characters = 0;
+    while (at < text.size() && characters < max_characters) {
+        const auto [length, code] = utf8_sequence(text.substr(at));
+        if (length == 0) {
+            append_escape(out, static_cast<unsigned char>(text[at]));  // a byte that is not UTF-8
+            at += 1;
+        } else {
+            if (shown_escaped(code)) append_escape(out, code);
+            else out.append(text.substr(at, length));
+            at += length;
+        }
+        ++characters;
+    }
+    out += "'";
+    if (at < text.size()) {
+        out.insert(out.size() - 1, "\u2026");  // an ellipsis inside the quotes: the text goes on
+        out += " (" + std::to_string(text.size()) + " bytes)";
+    }
+    return out;
 }
 
 std::string_view trim(std::string_view text) {

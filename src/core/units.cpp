@@ -32,8 +32,8 @@ double parse_with_units(std::string_view text, std::span<const UnitFactor> units
     if (bare_allowed) {
         if (const auto number = parse_double(value); number && std::isfinite(*number * bare_factor)) return *number * bare_factor;
     }
-    throw InputError("invalid " + std::string(quantity) + " '" + std::string(text) +
-                     "': expected a number with a unit (" + std::string(accepted) + "), e.g. 30um");
+    throw InputError("invalid " + std::string(quantity) + " " + quote_input(text) +
+                     ": expected a number with a unit (" + std::string(accepted) + "), e.g. 30um");
 }
 
 }  // namespace

@@ -335,7 +335,7 @@ GrainOrientation parse_grain_orientation(std::string_view name) {
     for (const GrainOrientation o : {GrainOrientation::known, GrainOrientation::max_birefringence, GrainOrientation::free}) {
         if (name == grain_orientation_name(o)) return o;
     }
-    throw InputError("unknown grain orientation '" + std::string(name) + "' (expected known, max-birefringence or free)");
+    throw InputError("unknown grain orientation " + quote_input(name) + " (expected known, max-birefringence or free)");
 }
 
 Image rectangle_mask(int width_px, int height_px, int x0, int y0, int width, int height) {

@@ -1,6 +1,7 @@
 #include "animation_writer.hpp"
 
 #include "petroscope/core/error.hpp"
+#include "petroscope/core/text.hpp"
 
 #include <algorithm>
 #include <array>
@@ -200,7 +201,7 @@ AnimationWriter::AnimationWriter(const std::filesystem::path& path, const std::s
         video_.open(video_path_.string(), cv::CAP_FFMPEG, cv::VideoWriter::fourcc('m', 'p', '4', 'v'), fps, cv::Size(width, height));
         if (!video_.isOpened()) throw InputError("cannot open an MP4 writer for " + path.string() + " (OpenCV built without FFmpeg?)");
     } else {
-        throw InputError("animation format '" + format + "': expected gif, mp4 or none");
+        throw InputError("animation format " + quote_input(format) + ": expected gif, mp4 or none");
     }
 }
 

@@ -65,7 +65,7 @@ LightSource load_light_source(const std::string& name) {
             return blackbody_source(*kelvin);
         }
     }
-    throw InputError("unknown light source '" + name + "' (expected D65, A, or blackbody:TEMPERATUREK with 500 to 100000 K, e.g. blackbody:3200K)");
+    throw InputError("unknown light source " + quote_input(name) + " (expected D65, A, or blackbody:TEMPERATUREK with 500 to 100000 K, e.g. blackbody:3200K)");
 }
 
 MineralCatalog load_mineral_catalog(const std::filesystem::path& directory) {

@@ -18,8 +18,8 @@ ImageFormat image_format_for(const std::filesystem::path& path) {
     if (extension == ".png") return ImageFormat::png;
     if (extension == ".exr") return ImageFormat::exr;
     if (extension == ".tif" || extension == ".tiff") return ImageFormat::tiff;
-    throw InputError("output " + path.string() + ": unknown image type '" + extension +
-                     "' (expected .png for viewing, or .exr, .tif, .tiff for float data)");
+    throw InputError("output " + path.string() + ": unknown image type " + quote_input(extension) +
+                     " (expected .png for viewing, or .exr, .tif, .tiff for float data)");
 }
 
 std::string image_format_name(ImageFormat format) {

@@ -1,5 +1,7 @@
 #include "petroscope/io/json_reader.hpp"
 
+#include "petroscope/core/text.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -10,7 +12,7 @@ InputError JsonValue::error(const std::string& expected) const {
 }
 
 JsonValue JsonValue::operator[](const std::string& key) const {
-    if (!value_.is_object()) throw error("expected an object with the key '" + key + "'");
+    if (!value_.is_object()) throw error("expected an object with the key " + quote_input(key));
     const auto found = value_.find(key);
     const std::string child = path_.empty() ? key : path_ + "." + key;
     if (found == value_.end()) throw InputError(file_ + ": " + child + ": missing");
@@ -28,7 +30,7 @@ void JsonValue::only_keys(const std::vector<std::string>& allowed) const {
         if (std::find(allowed.begin(), allowed.end(), item.key()) != allowed.end()) continue;
         std::string list;
         for (const std::string& key : allowed) list += (list.empty() ? "" : ", ") + key;
-        throw error("unknown key '" + item.key() + "' (valid keys: " + list + ")");
+        throw error("unknown key " + quote_input(item.key()) + " (valid keys: " + list + ")");
     }
 }
 

@@ -26,7 +26,7 @@ NumberWithUnit parse_number_with_unit(std::string_view text, const std::string& 
     const std::string_view digits = trimmed.substr(0, split_at);
     const auto value = parse_double(digits);
     if (!value || digits.find_first_of("eE") != std::string_view::npos) {
-        throw InputError("--vary '" + whole + "': '" + std::string(trimmed) + "' is not a number (with an optional unit, e.g. 30 or 10um); expected NAME=START:END:STEP or NAME=V1,V2,…");
+        throw InputError("--vary " + quote_input(whole) + ": " + quote_input(trimmed) + " is not a number (with an optional unit, e.g. 30 or 10um); expected NAME=START:END:STEP or NAME=V1,V2,…");
     }
     number.value = *value;
     const std::size_t point = digits.find('.');
@@ -40,7 +40,7 @@ std::string common_unit(const std::vector<NumberWithUnit>& numbers, const std::s
     for (const NumberWithUnit& number : numbers) {
         if (number.unit.empty()) continue;
         if (!unit.empty() && unit != number.unit) {
-            throw InputError("--vary '" + whole + "': the numbers have different units (" + unit + ", " + number.unit + "); use one");
+            throw InputError("--vary " + quote_input(whole) + ": the numbers have different units (" + unit + ", " + number.unit + "); use one");
         }
         unit = number.unit;
     }
@@ -61,35 +61,35 @@ SweepParameter parse_sweep_parameter(std::string_view text, std::size_t max_valu
     const std::string whole(text);
     const std::size_t equals = text.find('=');
     if (equals == std::string_view::npos) {
-        throw InputError("--vary '" + whole + "': expected NAME=START:END:STEP (e.g. azimuth-deg=0:360:5) or NAME=V1,V2,…");
+        throw InputError("--vary " + quote_input(whole) + ": expected NAME=START:END:STEP (e.g. azimuth-deg=0:360:5) or NAME=V1,V2,…");
     }
     SweepParameter parameter;
     parameter.name = std::string(trim(text.substr(0, equals)));
     if (parameter.name.starts_with("--")) parameter.name.erase(0, 2);
-    if (parameter.name.empty()) throw InputError("--vary '" + whole + "': the option name before '=' is missing");
+    if (parameter.name.empty()) throw InputError("--vary " + quote_input(whole) + ": the option name before '=' is missing");
     const std::string_view range = text.substr(equals + 1);
     if (range.find(':') == std::string_view::npos) {
         std::vector<NumberWithUnit> numbers;
         for (const std::string& part : split(range, ',')) numbers.push_back(parse_number_with_unit(part, whole));
-        if (numbers.size() > max_values) throw InputError("--vary '" + whole + "': more than " + std::to_string(max_values) + " values");
+        if (numbers.size() > max_values) throw InputError("--vary " + quote_input(whole) + ": more than " + std::to_string(max_values) + " values");
         const std::string unit = common_unit(numbers, whole);
         for (const NumberWithUnit& number : numbers) parameter.values.push_back(format_fixed(number.value, number.decimals) + unit);
         return parameter;
     }
     const std::vector<std::string> parts = split(range, ':');
-    if (parts.size() != 3) throw InputError("--vary '" + whole + "': expected START:END:STEP, three numbers separated by ':'");
+    if (parts.size() != 3) throw InputError("--vary " + quote_input(whole) + ": expected START:END:STEP, three numbers separated by ':'");
     std::vector<NumberWithUnit> numbers;
     for (const std::string& part : parts) numbers.push_back(parse_number_with_unit(part, whole));
     const std::string unit = common_unit(numbers, whole);
     const NumberWithUnit &start = numbers[0], &end = numbers[1], &step = numbers[2];
-    if (step.value == 0.0) throw InputError("--vary '" + whole + "': the step is zero");
+    if (step.value == 0.0) throw InputError("--vary " + quote_input(whole) + ": the step is zero");
     const double steps = (end.value - start.value) / step.value;
     if (steps < -1e-9) {
-        throw InputError("--vary '" + whole + "': the step " + parts[2] + " leads away from the end " + parts[1] + " (use a " +
+        throw InputError("--vary " + quote_input(whole) + ": the step " + parts[2] + " leads away from the end " + parts[1] + " (use a " +
                          (step.value > 0 ? "negative" : "positive") + " step)");
     }
     if (steps + 1.0 > static_cast<double>(max_values)) {
-        throw InputError("--vary '" + whole + "': more than " + std::to_string(max_values) + " values");
+        throw InputError("--vary " + quote_input(whole) + ": more than " + std::to_string(max_values) + " values");
     }
     const std::size_t count = static_cast<std::size_t>(std::floor(steps + 1e-9)) + 1;
     const int decimals = std::max(start.decimals, step.decimals);
@@ -109,7 +109,7 @@ SweepShard parse_sweep_shard(std::string_view text) {
         const int index = whole_number(parts[0]), count = whole_number(parts[1]);
         if (index >= 1 && count >= 1 && index <= count) return {index, count};
     }
-    throw InputError("--shard '" + std::string(text) + "': expected K/N with 1 <= K <= N, e.g. 2/8");
+    throw InputError("--shard " + quote_input(text) + ": expected K/N with 1 <= K <= N, e.g. 2/8");
 }
 
 std::size_t SweepPlan::frame_count() const {

@@ -59,7 +59,7 @@ struct Description {
     }
     const Entry& require(const std::string& key, const std::string& what) const {
         if (const Entry* entry = find(key)) return *entry;
-        throw located_error(file, last_line, "missing key '" + key + "' (" + what + ")");
+        throw located_error(file, last_line, "missing key " + quote_input(key) + " (" + what + ")");
     }
     InputError error(const Entry& entry, const std::string& what) const { return located_error(file, entry.line, what); }
 };
@@ -74,17 +74,17 @@ Description split_description(std::string_view text, const std::string& file) {
         if (line.empty()) return;
         const std::size_t colon = line.find(':');
         if (colon == std::string_view::npos) {
-            throw located_error(file, line_number, "expected 'key: value', found '" + std::string(line) + "'");
+            throw located_error(file, line_number, "expected 'key: value', found " + quote_input(line));
         }
         const std::string key(trim(line.substr(0, colon)));
         const std::string value(trim(line.substr(colon + 1)));
         if (key.empty()) throw located_error(file, line_number, "missing key before ':'");
-        if (value.empty()) throw located_error(file, line_number, "key '" + key + "' has no value");
+        if (value.empty()) throw located_error(file, line_number, "key " + quote_input(key) + " has no value");
         const auto words = split_whitespace(key);
         if (words.front() == "grain") {
             const auto label = words.size() == 2 ? parse_integer(words[1]) : std::nullopt;
             if (!label || *label < 0 || *label > 65535) {
-                throw located_error(file, line_number, "expected 'grain LABEL: MINERAL, …' with LABEL an integer 0 … 65535 (a value of the grain map), found '" + key + "'");
+                throw located_error(file, line_number, "expected 'grain LABEL: MINERAL, …' with LABEL an integer 0 … 65535 (a value of the grain map), found " + quote_input(key));
             }
             const int label_value = static_cast<int>(*label);
             if (const auto previous = label_lines.find(label_value); previous != label_lines.end()) {
@@ -98,10 +98,10 @@ Description split_description(std::string_view text, const std::string& file) {
         if (std::find(kKeys.begin(), kKeys.end(), key) == kKeys.end()) {
             std::string list;
             for (const auto& name : kKeys) list += (list.empty() ? "" : ", ") + name;
-            throw located_error(file, line_number, "unknown key '" + key + "' (valid keys: " + list + ")");
+            throw located_error(file, line_number, "unknown key " + quote_input(key) + " (valid keys: " + list + ")");
         }
         if (const auto previous = description.keys.find(key); previous != description.keys.end()) {
-            throw located_error(file, line_number, "key '" + key + "' appears twice (first on line " + std::to_string(previous->second.line) + ")");
+            throw located_error(file, line_number, "key " + quote_input(key) + " appears twice (first on line " + std::to_string(previous->second.line) + ")");
         }
         description.keys[key] = Entry{value, line_number};
     });
@@ -110,13 +110,13 @@ Description split_description(std::string_view text, const std::string& file) {
 
 double positive_number(const Description& description, const Entry& entry, const std::string& key, const std::string& what) {
     const auto value = parse_double(entry.value);
-    if (!value || !(*value > 0.0)) throw description.error(entry, key + ": expected " + what + ", found '" + entry.value + "'");
+    if (!value || !(*value > 0.0)) throw description.error(entry, key + ": expected " + what + ", found " + quote_input(entry.value));
     return *value;
 }
 
 double angle_deg(const Description& description, const Entry& entry, const std::string& context, const std::string& text) {
     const auto value = parse_double(text);
-    if (!value) throw description.error(entry, context + ": expected an angle in degrees (a bare number), found '" + text + "'");
+    if (!value) throw description.error(entry, context + ": expected an angle in degrees (a bare number), found " + quote_input(text));
     return *value;
 }
 
@@ -142,10 +142,10 @@ ThinSectionGrain parse_grain(const Description& description, int label, const En
         if (words.empty()) throw description.error(entry, context + ": empty field between commas; " + expected);
         const std::string& keyword = words[0];
         if ((keyword == "euler" || keyword == "cut") && oriented) {
-            throw description.error(entry, context + ": a second orientation '" + fields[f] + "'; expected one 'euler' or 'cut'");
+            throw description.error(entry, context + ": a second orientation " + quote_input(fields[f]) + "; expected one 'euler' or 'cut'");
         }
         if (keyword == "euler") {
-            if (words.size() != 4) throw description.error(entry, context + ": expected 'euler A B C' (ZYZ angles in degrees), found '" + fields[f] + "'");
+            if (words.size() != 4) throw description.error(entry, context + ": expected 'euler A B C' (ZYZ angles in degrees), found " + quote_input(fields[f]));
             grain.crystal_axes = euler_zyz_deg(angle_deg(description, entry, context + " euler", words[1]),
                                                angle_deg(description, entry, context + " euler", words[2]),
                                                angle_deg(description, entry, context + " euler", words[3]));
@@ -156,7 +156,7 @@ ThinSectionGrain parse_grain(const Description& description, int label, const En
             for (std::size_t w = 2; w < words.size(); w += 2) {
                 std::optional<double>* slot = words[w] == "azimuth" ? &azimuth_deg : words[w] == "tilt" ? &tilt_deg : nullptr;
                 if (!slot || w + 1 >= words.size() || slot->has_value()) {
-                    throw description.error(entry, context + ": after the cut name expected 'azimuth DEG' and/or 'tilt DEG' once each, found '" + fields[f] + "'");
+                    throw description.error(entry, context + ": after the cut name expected 'azimuth DEG' and/or 'tilt DEG' once each, found " + quote_input(fields[f]));
                 }
                 *slot = angle_deg(description, entry, context + " " + words[w], words[w + 1]);
             }
@@ -177,10 +177,10 @@ ThinSectionGrain parse_grain(const Description& description, int label, const En
             } catch (const InputError& e) {
                 throw description.error(entry, context + ": " + e.what());
             }
-            if (!(thickness_um > 0.0)) throw description.error(entry, context + ": the grain's thickness must be > 0, found '" + words[1] + "'");
+            if (!(thickness_um > 0.0)) throw description.error(entry, context + ": the grain's thickness must be > 0, found " + quote_input(words[1]));
             grain.thickness_um = thickness_um;
         } else {
-            throw description.error(entry, context + ": " + expected + ", found '" + fields[f] + "'");
+            throw description.error(entry, context + ": " + expected + ", found " + quote_input(fields[f]));
         }
     }
     if (!oriented && mineral->optical_class != OpticalClass::isotropic) {
@@ -211,7 +211,7 @@ void read_thickness(const Description& description, const fs::path& folder, Thin
         const bool axis_ok = words.size() == 2 || (words.size() == 3 && (words[2] == "x" || words[2] == "y"));
         if (!start || !end || !axis_ok || *start < 0.0 || *end < 0.0 || *start + *end <= 0.0) {
             throw description.error(*wedge, "thickness_wedge_um: expected 'START END [x|y]', two thicknesses in micrometres >= 0 (not both 0) and the "
-                                            "direction (x: left to right, the default; y: top to bottom), found '" + wedge->value + "'");
+                                            "direction (x: left to right, the default; y: top to bottom), found " + quote_input(wedge->value));
         }
         section.thickness_kind = ThicknessKind::wedge;
         section.wedge_start_um = *start;
@@ -267,7 +267,7 @@ void check_writable_text(const std::string& what, const std::string& text, bool 
     const bool comment = !text.empty() && (text.front() == '#' || text.find(" #") != std::string::npos || text.find("\t#") != std::string::npos);
     if (text.empty() || text.find('\n') != std::string::npos || text.find('\r') != std::string::npos || comment ||
         (!comma_allowed && text.find(',') != std::string::npos) || trim(text) != text) {
-        throw InputError("cannot write the thin section: " + what + " '" + text + "' cannot be written on one description line "
+        throw InputError("cannot write the thin section: " + what + " " + quote_input(text) + " cannot be written on one description line "
                          "(not empty, no line breaks, no '#' after a space, no surrounding spaces" + (comma_allowed ? "" : ", no commas") + ")");
     }
 }
@@ -308,7 +308,7 @@ ThinSection read_thin_section(const fs::path& description_or_dir, const MineralC
         const auto width = words.size() == 2 ? parse_integer(words[0]) : std::nullopt;
         const auto height = words.size() == 2 ? parse_integer(words[1]) : std::nullopt;
         if (!width || !height || *width < 1 || *height < 1 || *width > 65536 || *height > 65536) {
-            throw description.error(size_entry, "size_px: expected the width and height in pixels, two integers 1 … 65536, found '" + size_entry.value + "'");
+            throw description.error(size_entry, "size_px: expected the width and height in pixels, two integers 1 … 65536, found " + quote_input(size_entry.value));
         }
         section.width_px = static_cast<int>(*width);
         section.height_px = static_cast<int>(*height);

@@ -34,7 +34,7 @@ PlateKind parse_plate(std::string_view name) {
     for (const PlateKind kind : {PlateKind::gypsum, PlateKind::mica, PlateKind::wedge}) {
         if (name == plate_name(kind)) return kind;
     }
-    throw InputError("unknown accessory plate '" + std::string(name) + "' (expected gypsum, mica or wedge)");
+    throw InputError("unknown accessory plate " + quote_input(name) + " (expected gypsum, mica or wedge)");
 }
 
 std::string_view plate_mineral_name(PlateKind kind) {

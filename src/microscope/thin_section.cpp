@@ -1,6 +1,7 @@
 #include "petroscope/microscope/thin_section.hpp"
 
 #include "petroscope/core/error.hpp"
+#include "petroscope/core/text.hpp"
 #include "petroscope/optics/orientation.hpp"
 
 #include <Eigen/Geometry>
@@ -44,14 +45,14 @@ void ThinSection::index_grains() {
     for (std::size_t i = 0; i < grains.size(); ++i) {
         const ThinSectionGrain& grain = grains[i];
         if (grain.label < 0 || grain.label >= kLabelCount) {
-            throw InputError("thin section '" + name + "': grain label " + std::to_string(grain.label) + " is outside 0 … 65535");
+            throw InputError("thin section " + quote_input(name) + ": grain label " + std::to_string(grain.label) + " is outside 0 … 65535");
         }
         int& slot = grain_index_of_label[static_cast<std::size_t>(grain.label)];
         if (slot >= 0) {
             const ThinSectionGrain& first = grains[static_cast<std::size_t>(slot)];
             std::string where;
             if (first.line > 0 && grain.line > 0) where = " (lines " + std::to_string(first.line) + " and " + std::to_string(grain.line) + ")";
-            throw InputError("thin section '" + name + "': grain label " + std::to_string(grain.label) + " is defined twice" + where);
+            throw InputError("thin section " + quote_input(name) + ": grain label " + std::to_string(grain.label) + " is defined twice" + where);
         }
         slot = static_cast<int>(i);
     }
@@ -73,7 +74,7 @@ std::vector<std::pair<std::uint16_t, std::size_t>> ThinSection::label_counts() c
 }
 
 void ThinSection::validate() {
-    const std::string what = "thin section '" + name + "': ";
+    const std::string what = "thin section " + quote_input(name) + ": ";
     if (width_px < 1 || height_px < 1) throw InputError(what + "the map must be at least 1x1 pixels");
     const std::size_t pixels = static_cast<std::size_t>(width_px) * static_cast<std::size_t>(height_px);
     if (labels.size() != pixels) throw InputError(what + "the label map holds " + std::to_string(labels.size()) + " values, expected width x height = " + std::to_string(pixels));

@@ -25,7 +25,7 @@ MineralCatalog::MineralCatalog(std::vector<Mineral> minerals) : minerals_(std::m
         for (const std::string& name : names_of(mineral)) {
             const auto [it, inserted] = seen.emplace(to_lower(name), &mineral);
             if (!inserted) {
-                throw InputError("mineral name '" + name + "' is used by both " + it->second->file + " and " + mineral.file);
+                throw InputError("mineral name " + quote_input(name) + " is used by both " + it->second->file + " and " + mineral.file);
             }
         }
     }
@@ -51,7 +51,7 @@ const Mineral& MineralCatalog::find(std::string_view name) const {
         if (best <= std::max<std::size_t>(2, wanted.size() / 3)) close.emplace_back(best, mineral.name);
     }
     std::sort(close.begin(), close.end());
-    std::string message = "unknown mineral '" + std::string(name) + "'";
+    std::string message = "unknown mineral " + quote_input(name);
     if (!close.empty()) {
         message += "; did you mean ";
         for (std::size_t i = 0; i < close.size() && i < 3; ++i) message += (i ? ", " : "") + close[i].second;

@@ -49,15 +49,15 @@ public:
             if (line.empty()) return;
             const std::size_t colon = line.find(':');
             if (colon == std::string_view::npos) {
-                throw located_error(file_, line_number, "expected 'key: value', found '" + std::string(line) + "'");
+                throw located_error(file_, line_number, "expected 'key: value', found " + quote_input(line));
             }
             const std::string key(trim(line.substr(0, colon)));
             const std::string value(trim(line.substr(colon + 1)));
             if (key.empty()) throw located_error(file_, line_number, "missing key before ':'");
-            if (value.empty()) throw located_error(file_, line_number, "key '" + key + "' has no value");
+            if (value.empty()) throw located_error(file_, line_number, "key " + quote_input(key) + " has no value");
             if (const auto previous = entries_.find(key); previous != entries_.end()) {
                 throw located_error(file_, line_number,
-                                    "key '" + key + "' appears twice (first on line " + std::to_string(previous->second.line) + ")");
+                                    "key " + quote_input(key) + " appears twice (first on line " + std::to_string(previous->second.line) + ")");
             }
             entries_[key] = Entry{value, line_number};
         });
@@ -70,7 +70,7 @@ public:
     }
     const Entry& require(const std::string& key, const std::string& what) {
         if (const Entry* entry = find(key)) return *entry;
-        throw located_error(file_, last_line_, "missing key '" + key + "' (" + what + ")");
+        throw located_error(file_, last_line_, "missing key " + quote_input(key) + " (" + what + ")");
     }
     InputError error(const Entry& entry, const std::string& what) const { return located_error(file_, entry.line, what); }
     InputError error_at_end(const std::string& what) const { return located_error(file_, last_line_, what); }
@@ -81,7 +81,7 @@ public:
             if (used_.count(key) == 0) {
                 std::string list;
                 for (const auto& name : valid) list += (list.empty() ? "" : ", ") + name;
-                throw located_error(file_, entry.line, "unknown key '" + key + "' (valid keys here: " + list + ")");
+                throw located_error(file_, entry.line, "unknown key " + quote_input(key) + " (valid keys here: " + list + ")");
             }
         }
     }
@@ -151,15 +151,15 @@ Mineral parse_mineral(std::string_view text, const std::string& file_name) {
     }
     const Entry& system = reader.require("system", "crystal system");
     if (std::find(kSystems.begin(), kSystems.end(), system.value) == kSystems.end()) {
-        throw reader.error(system, "unknown crystal system '" + system.value +
-                                       "' (expected cubic, tetragonal, hexagonal, trigonal, orthorhombic, monoclinic, triclinic or amorphous)");
+        throw reader.error(system, "unknown crystal system " + quote_input(system.value) +
+                                       " (expected cubic, tetragonal, hexagonal, trigonal, orthorhombic, monoclinic, triclinic or amorphous)");
     }
     mineral.system = system.value;
     const Entry& optical_class = reader.require("class", "isotropic, uniaxial or biaxial");
     if (optical_class.value == "isotropic") mineral.optical_class = OpticalClass::isotropic;
     else if (optical_class.value == "uniaxial") mineral.optical_class = OpticalClass::uniaxial;
     else if (optical_class.value == "biaxial") mineral.optical_class = OpticalClass::biaxial;
-    else throw reader.error(optical_class, "unknown optical class '" + optical_class.value + "' (expected isotropic, uniaxial or biaxial)");
+    else throw reader.error(optical_class, "unknown optical class " + quote_input(optical_class.value) + " (expected isotropic, uniaxial or biaxial)");
 
     if (const Entry* reference = reader.find("reference_wavelength_nm")) {
         const auto value = parse_double(reference->value);

@@ -42,7 +42,7 @@ double formula_4_squared(const std::vector<double>& c, double lambda_um) {
 }
 
 InputError model_error(std::string_view model, const std::string& expected) {
-    return InputError("dispersion model '" + std::string(model) + "': expected " + expected);
+    return InputError("dispersion model " + quote_input(model) + ": expected " + expected);
 }
 
 }  // namespace
@@ -73,8 +73,8 @@ DispersionModel DispersionModel::parse(std::string_view text) {
         }
     }
     if (!known) {
-        throw InputError("unknown dispersion model '" + words[0] +
-                         "' (expected constant, cauchy, rii-formula-1, rii-formula-2, rii-formula-4 or table-nm)");
+        throw InputError("unknown dispersion model " + quote_input(words[0]) +
+                         " (expected constant, cauchy, rii-formula-1, rii-formula-2, rii-formula-4 or table-nm)");
     }
     const std::size_t count = words.size() - 1;
     if (model.kind_ == Kind::table_nm) {
@@ -82,10 +82,10 @@ DispersionModel DispersionModel::parse(std::string_view text) {
             const auto pair = split(words[i], ':');
             const auto lambda = pair.size() == 2 ? parse_double(pair[0]) : std::nullopt;
             const auto value = pair.size() == 2 ? parse_double(pair[1]) : std::nullopt;
-            if (!lambda || !value) throw model_error(words[0], "pairs WAVELENGTH_NM:VALUE, found '" + words[i] + "'");
-            if (*lambda <= 0.0) throw model_error(words[0], "positive wavelengths, found '" + words[i] + "'");
+            if (!lambda || !value) throw model_error(words[0], "pairs WAVELENGTH_NM:VALUE, found " + quote_input(words[i]));
+            if (*lambda <= 0.0) throw model_error(words[0], "positive wavelengths, found " + quote_input(words[i]));
             if (!model.coefficients_.empty() && *lambda <= model.coefficients_[model.coefficients_.size() - 2]) {
-                throw model_error(words[0], "increasing wavelengths, found '" + words[i] + "' after a longer one");
+                throw model_error(words[0], "increasing wavelengths, found " + quote_input(words[i]) + " after a longer one");
             }
             model.coefficients_.push_back(*lambda);
             model.coefficients_.push_back(*value);
@@ -95,7 +95,7 @@ DispersionModel DispersionModel::parse(std::string_view text) {
     }
     for (std::size_t i = 1; i < words.size(); ++i) {
         const auto value = parse_double(words[i]);
-        if (!value) throw model_error(words[0], "numbers, found '" + words[i] + "'");
+        if (!value) throw model_error(words[0], "numbers, found " + quote_input(words[i]));
         model.coefficients_.push_back(*value);
     }
     switch (model.kind_) {

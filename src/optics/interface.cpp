@@ -3,6 +3,7 @@
 #include "local_modes.hpp"
 
 #include "petroscope/core/error.hpp"
+#include "petroscope/core/text.hpp"
 #include "petroscope/optics/eigenmodes.hpp"
 
 #include <Eigen/Dense>
@@ -156,8 +157,8 @@ InterfaceResult solve_interface(const Eigen::Vector3d& normal_in, const Interfac
             incident_sheet = (incidence.mode == "ordinary") == fast_is_ordinary ? 0 : 1;
         } else {
             throw bad("medium 1 is anisotropic: the incident wave must be one of its modes, \"fast\" or \"slow\"" +
-                      std::string(medium1.is_uniaxial() ? " (or \"ordinary\", \"extraordinary\")" : "") + ", not '" +
-                      incidence.mode + "'");
+                      std::string(medium1.is_uniaxial() ? " (or \"ordinary\", \"extraordinary\")" : "") + ", not " +
+                      quote_input(incidence.mode));
         }
         result.incident_n = incident_sheet == 0 ? pair.fast.n : pair.slow.n;
     }

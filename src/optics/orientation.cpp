@@ -1,6 +1,7 @@
 #include "petroscope/optics/orientation.hpp"
 
 #include "petroscope/core/error.hpp"
+#include "petroscope/core/text.hpp"
 
 #include <Eigen/Geometry>
 
@@ -49,8 +50,8 @@ Cut parse_cut(std::string_view name) {
     for (const auto& [cut, cut_text] : kCutNames) {
         if (name == cut_text) return cut;
     }
-    throw InputError("unknown cut '" + std::string(name) +
-                     "' (expected optic-axis, acute-bisectrix, obtuse-bisectrix or optic-normal)");
+    throw InputError("unknown cut " + quote_input(name) +
+                     " (expected optic-axis, acute-bisectrix, obtuse-bisectrix or optic-normal)");
 }
 
 std::string_view cut_name(Cut cut) {

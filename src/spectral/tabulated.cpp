@@ -46,14 +46,14 @@ SpectralTable parse_spectral_csv(std::string_view text, const std::string& sourc
                                     std::to_string(fields.size()));
         }
         const auto wavelength = parse_double(fields[0]);
-        if (!wavelength) throw located_error(source_name, line_number, "wavelength '" + fields[0] + "' is not a number");
+        if (!wavelength) throw located_error(source_name, line_number, "wavelength " + quote_input(fields[0]) + " is not a number");
         if (!wavelengths.empty() && *wavelength <= wavelengths.back()) {
             throw located_error(source_name, line_number, "wavelengths must increase");
         }
         wavelengths.push_back(*wavelength);
         for (std::size_t c = 0; c < values.size(); ++c) {
             const auto value = parse_double(fields[c + 1]);
-            if (!value) throw located_error(source_name, line_number, "value '" + fields[c + 1] + "' is not a number");
+            if (!value) throw located_error(source_name, line_number, "value " + quote_input(fields[c + 1]) + " is not a number");
             values[c].push_back(*value);
         }
     });

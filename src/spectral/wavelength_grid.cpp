@@ -38,7 +38,7 @@ WavelengthGrid WavelengthGrid::monochromatic(double wavelength_nm) {
 WavelengthGrid WavelengthGrid::parse(std::string_view text) {
     const auto parts = split(text, ':');
     const auto fail = [&](const std::string& why) {
-        return InputError("invalid wavelength grid '" + std::string(text) + "': " + why +
+        return InputError("invalid wavelength grid " + quote_input(text) + ": " + why +
                           " (expected START:END:STEP in nm, e.g. 380:780:5)");
     };
     if (parts.size() != 3) throw fail("three numbers separated by ':' are needed");

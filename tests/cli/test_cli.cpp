@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <set>
 #include <sstream>
 #include <string>
@@ -357,6 +358,27 @@ TEST_F(Cli, OrthoscopeRejectsBadInputAndLeavesNoFiles) {
     expect_rejected("orthoscope --section " + kGranite + " --condenser-na 0.2 --condenser-rings 65 -o " + png, {"--condenser-rings", "0 (automatic) to 64"});
     expect_rejected("orthoscope --section " + kGranite + " --exposure 0 -o " + png, {"--exposure"});
     expect_rejected("orthoscope --section " + kGranite + " -o " + quoted(out() / "x.jpg"), {"x.jpg"});
+}
+
+// A section file of random bytes (a terminal escape, control characters, bytes that are not UTF-8, one
+// line of 5000 bytes): the message names the file and quotes the line escaped and cut.
+TEST_F(Cli, ASectionOfRandomBytesIsQuotedSafely) {
+    std::string noise = "\x1b[2J\x1b]0;owned\x07";
+    std::mt19937 random(7);
+    for (int i = 0; i < 5000; ++i) {
+        const auto byte = static_cast<char>(random() % 256);
+        noise += byte == '\n' ? '\0' : byte;  // one line
+    }
+    const fs::path file = scratch() / "noise.txt";
+    std::ofstream(file, std::ios::binary) << noise;
+    const std::string png = quoted(out() / "x.png");
+    expect_rejected("orthoscope --section " + quoted(file) + " -o " + png, {"noise.txt", "\\x1b[2J", "bytes)"});
+    const CommandResult run = petroscope("orthoscope --section " + quoted(file) + " -o " + png);
+    EXPECT_LT(run.err.size(), 600u) << run.err;
+    for (const char c : run.err) {
+        const auto byte = static_cast<unsigned char>(c);
+        EXPECT_TRUE(byte == '\n' || (byte >= 0x20 && byte != 0x7F)) << "raw byte " << int(byte) << " in: " << run.err;
+    }
 }
 
 TEST_F(Cli, ConoscopeThroughTheWholeStack) {

@@ -108,6 +108,37 @@ TEST(FormatWithUncertainty, RoundsSigmaToTwoDigitsAndValueToItsPlace) {
     EXPECT_EQ(format_with_uncertainty(2.5, 0.0), "2.5 +- 0");           // no rounding rule without a sigma
 }
 
+// Input quoted in a message never reaches the terminal as control characters, broken UTF-8 or invisible
+// direction marks, and a long input is cut with its full length said.
+TEST(QuoteInput, PrintableTextIsQuotedAsItIs) {
+    EXPECT_EQ(quote_input("calcite"), "'calcite'");
+    EXPECT_EQ(quote_input(""), "''");
+    EXPECT_EQ(quote_input("Michel-L\u00e9vy 30 \u00b5m"), "'Michel-L\u00e9vy 30 \u00b5m'");  // UTF-8 letters stay
+}
+
+TEST(QuoteInput, ControlCharactersAndBytesThatAreNotUtf8AreEscaped) {
+    EXPECT_EQ(quote_input("a\nb\tc\rd"), "'a\\nb\\tc\\rd'");
+    EXPECT_EQ(quote_input(std::string("\x1b[31mred\x00\x7f", 10)), "'\\x1b[31mred\\x00\\x7f'");
+    EXPECT_EQ(quote_input("\xff\xfe"), "'\\xff\\xfe'");              // not UTF-8
+    EXPECT_EQ(quote_input("\xc3"), "'\\xc3'");                        // a sequence cut short
+    EXPECT_EQ(quote_input("\xc0\xaf"), "'\\xc0\\xaf'");              // an overlong '/'
+    EXPECT_EQ(quote_input("\xed\xa0\x80"), "'\\xed\\xa0\\x80'");    // a UTF-16 surrogate
+    EXPECT_EQ(quote_input("\xc2\x85"), "'\\x85'");                    // C1 control NEL
+}
+
+TEST(QuoteInput, InvisibleLineAndDirectionControlsAreEscaped) {
+    EXPECT_EQ(quote_input("abc\u202edef"), "'abc\\u202edef'");  // right-to-left override
+    EXPECT_EQ(quote_input("a\u2028b\u2066c"), "'a\\u2028b\\u2066c'");
+}
+
+TEST(QuoteInput, LongTextIsCutAndItsLengthSaid) {
+    const std::string long_text(5000, 'x');
+    EXPECT_EQ(quote_input(long_text, 10), "'xxxxxxxxxx\u2026' (5000 bytes)");
+    EXPECT_EQ(quote_input(std::string(80, 'y')), "'" + std::string(80, 'y') + "'");  // up to the limit: whole
+    // The limit counts characters, not bytes: a multi-byte letter is never split.
+    EXPECT_EQ(quote_input("\u00e9\u00e9\u00e9", 2), "'\u00e9\u00e9\u2026' (6 bytes)");
+}
+
 TEST(LocatedError, ReadsFileColonLineColonWhat) {
     const InputError error = located_error("minerals/quartz.txt", 12, "expected 'key: value'");
     EXPECT_STREQ(error.what(), "minerals/quartz.txt:12: expected 'key: value'");

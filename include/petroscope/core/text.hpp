@@ -32,6 +32,12 @@ std::string format_significant(double value, int digits);
 /// sigma leaves the value at six significant digits.
 std::string format_with_uncertainty(double value, double sigma);
 
+/// `text` in single quotes, safe to print in a message to a terminal: control characters, bytes that are
+/// not UTF-8 and Unicode's invisible line and direction controls come escaped (\n, \t, \x1b, \xff,
+/// \u202e), and text beyond `max_characters` is cut ('abc…' (5000 bytes)). Every message that quotes
+/// user input quotes it with this.
+std::string quote_input(std::string_view text, std::size_t max_characters = 80);
+
 /// Levenshtein edit distance, for "did you mean" suggestions.
 std::size_t edit_distance(std::string_view a, std::string_view b);
 
