@@ -57,8 +57,8 @@ double positive_length_um(const std::string& option, const std::string& text);
 /// A range of lengths "MIN:MAX" with units (10um:5mm) in µm, 0 < MIN < MAX; throws InputError naming `option`.
 std::pair<double, double> length_range_um(const std::string& option, const std::string& text);
 
-/// Three ZYZ Euler angles in degrees, "a,b,c" (R = Rz(a)·Ry(b)·Rz(c), docs/conventions.md); throws
-/// InputError naming `option`.
+/// Three ZYZ Euler angles in degrees, "ALPHA,BETA,GAMMA" (R = Rz(ALPHA)·Ry(BETA)·Rz(GAMMA),
+/// docs/conventions.md); throws InputError naming `option`.
 std::array<double, 3> euler_angles_deg(const std::string& option, const std::string& text);
 
 /// The command line as one string, for sidecars.
