@@ -1,5 +1,6 @@
 // Conoscope speed: white-light and monochromatic figures, exact modes and Fresnel at both faces, on all
 // cores (OpenMP). Reports wall time per figure and ns per pixel-wavelength (pixels inside the aperture).
+#include "petroscope/api/conoscope_figure.hpp"
 #include "petroscope/io/data_files.hpp"
 #include "petroscope/microscope/conoscope.hpp"
 #include "petroscope/optics/orientation.hpp"
@@ -43,11 +44,24 @@ void run_figure(benchmark::State& state, const char* mineral_name, bool white) {
         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
+// The library layer's whole call, as the CLI and Python make it: the default figure (muscovite, 30 µm,
+// white light D65) planned, rendered, converted to display colours and measured. bench/bench_python.py
+// times the same call from Python.
+void LibraryLayerDefaultFigure(benchmark::State& state) {
+    ConoscopeRequest request;
+    request.size_px = static_cast<int>(state.range(0));
+    for (auto _ : state) {
+        ConoscopeFigure figure = render_conoscope_figure(plan_conoscope(request, catalog()));
+        benchmark::DoNotOptimize(figure.image.linear_rgb.pixels.data());
+    }
+}
+
 void WhiteLightBiaxial(benchmark::State& state) { run_figure(state, "muscovite", true); }
 void WhiteLightUniaxial(benchmark::State& state) { run_figure(state, "calcite", true); }
 void MonochromaticBiaxial(benchmark::State& state) { run_figure(state, "muscovite", false); }
 void MonochromaticUniaxial(benchmark::State& state) { run_figure(state, "calcite", false); }
 
+BENCHMARK(LibraryLayerDefaultFigure)->Arg(512)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(WhiteLightBiaxial)->Arg(128)->Arg(256)->Arg(512)->Arg(1024)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(WhiteLightUniaxial)->Arg(128)->Arg(256)->Arg(512)->Arg(1024)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(MonochromaticBiaxial)->Arg(512)->Arg(1024)->Arg(2048)->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -17,7 +17,7 @@ using namespace petroscope;
 void FitConoscopePhoto512(benchmark::State& state) {
     const Mineral& mineral = testing::fit_minerals().find("muscovite");
     const testing::PhotoLight light = testing::white_light();
-    const ConoscopePhotoModel model = testing::photo_model(mineral, Cut::acute_bisectrix, light);
+    const ConoscopePhotoModel model = testing::photo_model(mineral, Cut::acute_bisectrix);
     testing::PhotoTruth truth;
     truth.thickness_um = 300.0;
     truth.center_dx_px = 14;

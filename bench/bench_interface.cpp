@@ -36,7 +36,7 @@ std::vector<Case> random_cases(int count, bool biaxial_medium1) {
         c.medium2 = random_biaxial();
         const double theta = 89.0 * std::numbers::pi / 180.0 * unit(rng), phi = 2.0 * std::numbers::pi * unit(rng);
         c.incidence.direction = {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
-        c.incidence.mode = "fast";
+        c.incidence.mode = InterfaceMode::fast;
         cases.push_back(c);
     }
     return cases;

@@ -1,19 +1,14 @@
 #pragma once
 // Options every rendering subcommand shares: the light (white or monochromatic) with its display
 // conversion, and the accessory plate.
-#include "petroscope/core/image.hpp"
-#include "petroscope/microscope/polarizing_microscope.hpp"
-#include "petroscope/minerals/mineral_catalog.hpp"
-#include "petroscope/spectral/colorimetry.hpp"
-#include "petroscope/spectral/wavelength_grid.hpp"
+#include "petroscope/api/light.hpp"
+#include "petroscope/api/plate.hpp"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include <functional>
 #include <optional>
 #include <string>
-#include <vector>
 
 namespace petroscope::cli {
 
@@ -26,20 +21,12 @@ struct LightOptions {
 };
 void add_light_options(CLI::App* command, LightOptions& options);
 
-/// The wavelengths the options ask for (validated; the option named in any error).
-struct ResolvedLight {
-    std::vector<double> wavelengths_nm;
-    std::optional<WavelengthGrid> grid;  // white light
-    bool monochromatic() const { return !grid; }
-};
-ResolvedLight resolve_light(const LightOptions& options);
+/// The light the options describe (validated; the option named in any error).
+Light light_from_options(const LightOptions& options);
 
-/// Renders with `render` (given the colour integrator in white light, nullptr in monochromatic light) and
-/// converts to linear sRGB for display; `light_json` receives the sidecar's "light" entry, whose
-/// "pixel_values" says what 1 means (`white_meaning`).
-Image render_in_light(const LightOptions& options, const ResolvedLight& light,
-                      const std::function<Image(const SpectralIntegrator*)>& render, const std::string& white_meaning,
-                      nlohmann::json& light_json);
+/// The sidecar's "light" entry of an image rendered in `light`: "pixel_values" says what 1 means
+/// (`white_meaning`: what shows white).
+nlohmann::json light_json(const Light& light, const DisplayImage& image, const std::string& white_meaning);
 
 struct PlateOptions {
     std::string plate;  // empty: none
@@ -47,7 +34,10 @@ struct PlateOptions {
     double wedge_position = 0.5;
 };
 void add_plate_options(CLI::App* command, PlateOptions& options);
-std::optional<AccessoryPlate> make_plate(const PlateOptions& options, const MineralCatalog& catalog);
+std::optional<PlateRequest> plate_request(const PlateOptions& options);
 nlohmann::json plate_json(const std::optional<AccessoryPlate>& plate);
+
+/// The sidecar's "mounting": the standard thin section's layers.
+nlohmann::json mounting_json(const SectionMounting& mounting);
 
 }  // namespace petroscope::cli

@@ -1,13 +1,11 @@
 // petroscope chart: the Michel-Lévy chart of interference colours, computed by the orthoscope's pipeline.
 #include "cli_common.hpp"
 
+#include "petroscope/api/michel_levy_chart.hpp"
 #include "petroscope/core/error.hpp"
 #include "petroscope/io/chart_drawing.hpp"
 #include "petroscope/io/data_files.hpp"
-#include "petroscope/microscope/michel_levy.hpp"
-#include "petroscope/microscope/orthoscope.hpp"
 #include "petroscope/spectral/color.hpp"
-#include "petroscope/spectral/wavelength_grid.hpp"
 
 #include <cstdio>
 #include <fstream>
@@ -50,37 +48,26 @@ void write_csv(const std::vector<MichelLevyStep>& steps, const std::vector<Eigen
 }
 
 void run_chart(const ChartOptions& options, const std::string& minerals_dir, const std::string& command_line) {
-    MichelLevySettings settings;
-    settings.max_retardation_nm = options.max_retardation_nm;
-    settings.step_nm = options.step_nm;
-    const WavelengthGrid grid = with_option("--wavelengths", [&] { return WavelengthGrid::parse(options.wavelength_grid); });
-    settings.wavelengths_nm = grid.wavelengths_nm();
+    MichelLevyRequest request;
+    if (!options.mineral.empty()) request.mineral = options.mineral;
+    request.max_retardation_nm = options.max_retardation_nm;
+    request.step_nm = options.step_nm;
+    request.light.grid = with_option("--wavelengths", [&] { return WavelengthGrid::parse(options.wavelength_grid); });
+    request.light.illuminant = options.illuminant;
+    request.light.white_balance = !options.no_white_balance;
     MichelLevyChartLayout layout;
     layout.max_thickness_um = positive_length_um("--max-thickness", options.max_thickness);
     const MineralCatalog catalog = load_mineral_catalog(minerals_directory(minerals_dir));
-    if (!options.mineral.empty()) settings.mineral = &catalog.find(options.mineral);
-    settings.validate();
+    if (!options.mineral.empty()) with_option("--mineral", [&]() -> const Mineral& { return catalog.find(options.mineral); });
     ImageResult result(options.output);
     std::filesystem::path csv_temporary;
     if (!options.csv.empty()) csv_temporary = result.add_companion(options.csv);
-
-    const LightSource source = load_light_source(options.illuminant);
-    const SpectralIntegrator integrator(settings.wavelengths_nm, load_cie_1931_observer(), source);
-    const SectionMounting mounting = standard_mounting(catalog);
-    const std::vector<MichelLevyStep> steps = michel_levy_colours(settings, mounting, integrator);
-    Image xyz(static_cast<int>(steps.size()), 1, 3);
-    for (std::size_t k = 0; k < steps.size(); ++k) {
-        for (int c = 0; c < 3; ++c) xyz.at(static_cast<int>(k), 0, c) = static_cast<float>(steps[k].xyz[c]);
-    }
-    const Image display = xyz_image_to_linear_srgb(xyz, integrator.white_xyz(), !options.no_white_balance, 1.0);
-    std::vector<Eigen::Vector3d> linear_srgb;
-    for (std::size_t k = 0; k < steps.size(); ++k) {
-        const int x = static_cast<int>(k);
-        linear_srgb.emplace_back(display.at(x, 0, 0), display.at(x, 0, 1), display.at(x, 0, 2));
-    }
-    if (!csv_temporary.empty()) write_csv(steps, linear_srgb, csv_temporary, options.csv);
-    double birefringence = 0.0;
-    michel_levy_plate(settings, birefringence);
+    const MichelLevyColours chart = michel_levy_chart_colours(request, catalog);
+    const std::vector<MichelLevyStep>& steps = chart.steps;
+    if (!csv_temporary.empty()) write_csv(steps, chart.linear_srgb, csv_temporary, options.csv);
+    const MichelLevySettings& settings = chart.settings;
+    const double birefringence = chart.birefringence_at_reference;
+    const WavelengthGrid& grid = request.light.grid;
     const nlohmann::json sidecar{
         {"program", "petroscope 0.1.0"},
         {"command", "chart"},
@@ -93,13 +80,13 @@ void run_chart(const ChartOptions& options, const std::string& minerals_dir, con
         {"reference_wavelength_nm", settings.reference_wavelength_nm},
         {"retardation_nm", {{"max", settings.max_retardation_nm}, {"step", settings.step_nm}, {"count", steps.size()}}},
         {"view", "crossed polars, plate at 45 degrees, parallel light, standard mounting (crown glass, canada balsam)"},
-        {"light", {{"illuminant", source.name}, {"white_balance", !options.no_white_balance},
+        {"light", {{"illuminant", chart.illuminant}, {"white_balance", !options.no_white_balance},
                    {"wavelengths_nm", {{"start", grid.start_nm}, {"end", grid.end_nm}, {"step", grid.step_nm}, {"count", grid.size()}}}}},
         {"max_thickness_um", layout.max_thickness_um},
         {"csv", options.csv.empty() ? nlohmann::json(nullptr) : nlohmann::json(options.csv)},
         {"model", "single-pass Jones from the exact eigenmodes of every layer, Fresnel at every interface (docs/orthoscope.md)"},
     };
-    result.write(draw_michel_levy_chart(steps, linear_srgb, layout), sidecar);
+    result.write(draw_michel_levy_chart(steps, chart.linear_srgb, layout), sidecar);
     std::cerr << "petroscope: wrote " << options.output << (options.csv.empty() ? "" : " and " + options.csv) << " ("
               << steps.size() << " retardations)\n";
 }

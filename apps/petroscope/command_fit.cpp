@@ -7,7 +7,7 @@
 
 #include "petroscope/core/error.hpp"
 #include "petroscope/core/text.hpp"
-#include "petroscope/fit/conoscope_fit.hpp"
+#include "petroscope/api/conoscope_photo_model.hpp"
 #include "petroscope/io/atomic_file.hpp"
 #include "petroscope/io/data_files.hpp"
 #include "petroscope/io/image_writer.hpp"
@@ -133,30 +133,14 @@ void run_fit_conoscope(const FitOptions& options, const std::string& minerals_di
     const std::optional<JpegEncoding> jpeg = with_option("--photo", [&] { return read_jpeg_encoding(options.photo); });
     const MineralCatalog catalog = load_mineral_catalog(minerals_directory(minerals_dir));
     const Mineral& mineral = with_option("--mineral", [&]() -> const Mineral& { return catalog.find(options.mineral); });
-    const ResolvedLight light = resolve_light(options.light);
-
-    ConoscopePhotoModel model;
-    model.settings.numerical_aperture = options.na;
-    model.settings.polarizer_deg = options.polarizer_deg;
-    model.settings.analyzer_deg = options.analyzer_deg;
-    model.settings.surround_n = options.surround_n;
-    model.settings.wavelengths_nm = light.wavelengths_nm;
-    model.settings.validate();
-    model.principal_n = [&mineral](double nm) { return mineral.principal_n(nm); };
-    const Cut cut = !options.cut.empty() ? with_option("--cut", [&] { return parse_cut(options.cut); })
-                    : mineral.optical_class == OpticalClass::biaxial ? Cut::acute_bisectrix : Cut::optic_axis;
-    const Eigen::Vector3d reference_n = mineral.principal_n(mineral.reference_wavelength_nm);
-    const OpticalClass optical_class = mineral.optical_class;
-    model.orientation = [cut, optical_class, reference_n](double tilt, double azimuth) {
-        return cut_orientation(cut, optical_class, reference_n, azimuth, tilt);
-    };
-    if (light.monochromatic()) {
-        model.rgb_per_transmission.assign(1, Eigen::Vector3d::Constant(options.light.exposure));
-    } else {
-        const SpectralIntegrator integrator(light.wavelengths_nm, load_cie_1931_observer(), load_light_source(options.light.illuminant));
-        const Eigen::Matrix3d display = xyz_to_display_matrix(integrator.white_xyz(), !options.light.no_white_balance, options.light.exposure);
-        for (const Eigen::Vector3d& weight : integrator.weights()) model.rgb_per_transmission.push_back(display * weight);
-    }
+    ConoscopePhotoSetup setup;
+    if (!options.cut.empty()) setup.cut = with_option("--cut", [&] { return parse_cut(options.cut); });
+    setup.light = light_from_options(options.light);
+    setup.numerical_aperture = options.na;
+    setup.polarizer_deg = options.polarizer_deg;
+    setup.analyzer_deg = options.analyzer_deg;
+    setup.surround_n = options.surround_n;
+    const ConoscopePhotoModel model = conoscope_photo_model(mineral, setup);
 
     ConoscopeFitOptions fit;
     fit.initial = default_photo_parameters(photo_raw.width, photo_raw.height);
@@ -202,7 +186,7 @@ void run_fit_conoscope(const FitOptions& options, const std::string& minerals_di
     const auto residual_tiff = pending.add(folder / "residual.tiff"), report_path = pending.add(folder / "report.json");
 
     const auto begin = std::chrono::steady_clock::now();
-    const ConoscopeFitResult result = fit_conoscope_photo(photo_raw, model, fit, [](double f) { show_progress("fitting", f); });
+    const ConoscopeFitResult result = fit_conoscope_photo(photo_raw, model, fit, [](double f) { show_progress("fitting", f); return true; });
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
 
     // The best-fit rendering, photo | model | residual (×4 around grey), and the residual as float numbers.

@@ -143,11 +143,11 @@ void run_fit_orthoscope(const GrainFitOptions& options, const std::string& miner
     const MineralCatalog catalog = load_mineral_catalog(minerals_directory(minerals_dir));
     const Mineral& mineral = with_option("--mineral", [&]() -> const Mineral& { return catalog.find(options.mineral); });
     if (!options.masks.empty() && !options.regions.empty()) throw InputError("--mask and --region: give one or the other");
-    const ResolvedLight light = resolve_light(options.light);
+    const Light light = light_from_options(options.light);
     if (light.monochromatic()) throw InputError("--wavelength: fit orthoscope needs white light (it reads interference colours)");
 
     OrthoscopeFitOptions fit;
-    fit.microscope.wavelengths_nm = light.wavelengths_nm;
+    fit.microscope.wavelengths_nm = light.wavelengths_nm();
     fit.microscope.condenser_na = options.condenser_na;
     fit.microscope.polars = {options.polarizer_deg, options.analyzer_deg, true};
     fit.mounting = standard_mounting(catalog);
@@ -184,7 +184,7 @@ void run_fit_orthoscope(const GrainFitOptions& options, const std::string& miner
         }
         if (!options.plates.empty()) {
             const std::string& name = per_photo(options.plates, k, "--plate", options.photos.size());
-            if (name != "none") photo.plate = make_plate({name, options.plate_deg, 0.5}, catalog);
+            if (name != "none") photo.plate = make_plate(plate_request({name, options.plate_deg, 0.5}), catalog);
         }
         photos.push_back(photo);
     }
@@ -195,7 +195,7 @@ void run_fit_orthoscope(const GrainFitOptions& options, const std::string& miner
     const auto report_path = pending.add(folder / "report.json"), swatch_png = pending.add(folder / "colours.png");
 
     const auto begin = std::chrono::steady_clock::now();
-    const SpectralIntegrator integrator(light.wavelengths_nm, load_cie_1931_observer(), load_light_source(options.light.illuminant));
+    const SpectralIntegrator integrator(fit.microscope.wavelengths_nm, load_cie_1931_observer(), load_light_source(light.illuminant));
     const OrthoscopeFitResult result = fit_orthoscope_grain(photos, mineral, fit, integrator);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
 

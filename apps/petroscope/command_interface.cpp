@@ -29,7 +29,7 @@ void print_table(const InterfaceCase& interface_case, const InterfaceResult& res
         char index[40];
         if (wave.n.imag() == 0.0) std::snprintf(index, sizeof index, "%.12g", wave.n.real());
         else std::snprintf(index, sizeof index, "%.9g%+.3gi", wave.n.real(), wave.n.imag());
-        std::printf("%-12s %-14s %-40s %-16s %-16.13f %.6f %.6f %.6f %.6f%s\n", kind, wave.mode.c_str(), direction, index, wave.power,
+        std::printf("%-12s %-14s %-40s %-16s %-16.13f %.6f %.6f %.6f %.6f%s\n", kind, std::string(wave_mode_name(wave.mode)).c_str(), direction, index, wave.power,
                     wave.stokes[0], wave.stokes[1], wave.stokes[2], wave.stokes[3], wave.evanescent ? "  (evanescent)" : "");
         total += wave.power;
     }

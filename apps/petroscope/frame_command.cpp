@@ -9,6 +9,12 @@
 
 namespace petroscope::cli {
 
+nlohmann::json measurements_json(const Measurements& measurements) {
+    nlohmann::json json = nlohmann::json::object();
+    for (const Measurement& measurement : measurements) json[measurement.name] = measurement.value ? nlohmann::json(*measurement.value) : nlohmann::json(nullptr);
+    return json;
+}
+
 const MineralCatalog& FrameContext::catalog() {
     if (!catalog_) catalog_ = load_mineral_catalog(minerals_directory(minerals_dir_));
     return *catalog_;
@@ -41,7 +47,7 @@ void add_frame_command(CLI::App& app, std::unique_ptr<FrameOptions> options_in, 
         FrameContext context(minerals_dir);
         const PreparedFrame prepared = options->prepare(context);
         for (const std::string& note : prepared.notes) std::cerr << "petroscope: " << note << '\n';
-        RenderedFrame frame = prepared.render([](double fraction) { show_progress("rendering", fraction); });
+        RenderedFrame frame = prepared.render([](double fraction) { show_progress("rendering", fraction); return true; });
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
         frame.sidecar["command_line"] = command_line;
         frame.sidecar["seconds"] = seconds;

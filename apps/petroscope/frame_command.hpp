@@ -1,6 +1,7 @@
 #pragma once
 // The subcommands that render one image (conoscope, orthoscope, conical) seen through one interface, so
 // that the same options run a single image or every frame of a sweep (command_sweep.cpp).
+#include "petroscope/api/measurements.hpp"
 #include "petroscope/core/image.hpp"
 #include "petroscope/core/progress.hpp"
 #include "petroscope/io/thin_section_file.hpp"
@@ -26,6 +27,9 @@ struct RenderedFrame {
     nlohmann::json sidecar;
     std::string summary;  // "512x512, 81 wavelengths"
 };
+
+/// The sidecar's "measurements": name → number, or null where there was nothing to measure.
+nlohmann::json measurements_json(const Measurements& measurements);
 
 /// Validated options, ready to render: nothing has been written yet.
 struct PreparedFrame {

@@ -134,8 +134,22 @@ std::unique_ptr<ceres::Problem> make_problem(const PhotoLevel& level, PhotoParam
 }
 
 /// Least squares on one level from `values`; returns the final Ceres cost and adds the iterations.
+/// Lets the progress callback cancel a solve between its iterations.
+class CancelBetweenIterations final : public ceres::IterationCallback {
+public:
+    explicit CancelBetweenIterations(ProgressRelay& relay) : relay_(relay) {}
+    ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
+        relay_.poll();
+        return relay_.cancelled() ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
+    }
+
+private:
+    ProgressRelay& relay_;
+};
+
+/// Solves on `level` from `values`; throws Cancelled when the progress callback asks to stop.
 double solve_level(const PhotoLevel& level, PhotoParameters& values, const ConoscopeFitOptions& options, const Bounds& bounds,
-                   int max_iterations, double function_tolerance, int& iterations) {
+                   int max_iterations, double function_tolerance, int& iterations, ProgressRelay& relay) {
     const std::unique_ptr<ceres::Problem> problem = make_problem(level, values, options, bounds);
     ceres::Solver::Options solver;
     solver.linear_solver_type = ceres::DENSE_QR;
@@ -144,8 +158,11 @@ double solve_level(const PhotoLevel& level, PhotoParameters& values, const Conos
     solver.function_tolerance = function_tolerance;
     solver.parameter_tolerance = 1e-9;
     solver.logging_type = ceres::SILENT;
+    CancelBetweenIterations cancel(relay);
+    solver.callbacks.push_back(&cancel);
     ceres::Solver::Summary summary;
     ceres::Solve(solver, problem.get(), &summary);
+    relay.stop_if_cancelled();
     iterations += static_cast<int>(summary.iterations.size());
     return summary.final_cost;
 }
@@ -433,6 +450,11 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
     if (model.rgb_per_transmission.size() != model.settings.wavelengths_nm.size()) {
         throw InputError("the colour weights and the figure use different wavelength grids");
     }
+    ProgressRelay relay(progress);
+    const auto reached = [&relay](double fraction_done) {
+        relay.report(fraction_done);
+        relay.stop_if_cancelled();
+    };
     const bool white_light = model.settings.wavelengths_nm.size() > 1;
     const Image photo = colour_photo(photo_in, white_light);
     PhotoParameters start = options.initial;
@@ -461,7 +483,7 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
         throw InputError("the photo is saturated: only " + std::to_string(fine->usable_count) + " of " +
                          std::to_string(fine->evaluator.sample_count()) + " sample pixels in the field are below full scale");
     }
-    if (progress) progress(0.02);
+    reached(0.02);
 
     ConoscopeFitResult result;
     result.pixels_used = fine->usable_count;
@@ -482,7 +504,7 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
     const std::vector<ThicknessMinimum> starts =
         thickness_minima(*search, model.rgb_per_transmission, start, scan_min_um, scan_max_um, options.candidates,
                          StepRule::finest_resolved_fringe);
-    if (progress) progress(0.15);
+    reached(0.15);
 
     // Every minimum is refined on the coarse level, for the geometry and the camera. Its thickness is not
     // held in the basin: at a wrong starting geometry the search's minima need not be the photo's.
@@ -491,12 +513,12 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
     for (std::size_t k = 0; k < starts.size(); ++k) {
         PhotoParameters values = start;
         at(values, PhotoParameter::thickness_um) = starts[k].thickness_um;
-        const double cost = solve_level(*coarse, values, options, bounds, 30, 1e-6, result.iterations);
+        const double cost = solve_level(*coarse, values, options, bounds, 30, 1e-6, result.iterations, relay);
         if (cost < geometry_cost) {
             geometry_cost = cost;
             geometry = values;
         }
-        if (progress) progress(0.15 + 0.4 * static_cast<double>(k + 1) / static_cast<double>(starts.size()));
+        reached(0.15 + 0.4 * static_cast<double>(k + 1) / static_cast<double>(starts.size()));
     }
     // The coarse level's blur hides the fine fringes of a thick slab, and there thickness trades against
     // blur (the attenuation depends on σ·d), so its thickness and blur are not trusted: the thickness is
@@ -515,7 +537,7 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
     for (std::size_t k = 0; k < minima.size(); ++k) {
         PhotoParameters values = geometry;
         at(values, PhotoParameter::thickness_um) = minima[k].thickness_um;
-        const double cost = solve_level(*scan, values, geometry_held, basin_bounds(minima[k]), 20, 1e-6, result.iterations) /
+        const double cost = solve_level(*scan, values, geometry_held, basin_bounds(minima[k]), 20, 1e-6, result.iterations, relay) /
                             std::max(1, 3 * scan->usable_count);
         result.candidates.push_back({minima[k].thickness_um, at(values, PhotoParameter::thickness_um), cost});
         if (cost < best_scan_cost) {
@@ -523,14 +545,14 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
             best = k;
             result.values = values;
         }
-        if (progress) progress(0.55 + 0.15 * static_cast<double>(k + 1) / static_cast<double>(minima.size()));
+        reached(0.55 + 0.15 * static_cast<double>(k + 1) / static_cast<double>(minima.size()));
     }
-    const double best_cost = solve_level(*fine, result.values, options, basin_bounds(minima[best]), 40, 1e-8, result.iterations) /
+    const double best_cost = solve_level(*fine, result.values, options, basin_bounds(minima[best]), 40, 1e-8, result.iterations, relay) /
                              std::max(1, 3 * fine->usable_count);
     result.candidates[best].thickness_um = at(result.values, PhotoParameter::thickness_um);
     std::sort(result.candidates.begin(), result.candidates.end(),
               [](const ThicknessCandidate& a, const ThicknessCandidate& b) { return a.cost < b.cost; });
-    if (progress) progress(0.95);
+    reached(0.95);
 
     // One cost on the fine level for the encoding check, the uncertainties and the statistics: the figure's
     // terms at the best fit's geometry are computed once and kept by it.
@@ -551,12 +573,12 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
         const detail::PhotoLevel encoded_level(model, fine->evaluator.lattice(), encoded, 0.0,
                                                at(start, PhotoParameter::gamma), options.saturated_level);
         PhotoParameters refitted = result.values;
-        solve_level(encoded_level, refitted, options, basin_bounds(minima[best]), 40, 1e-8, result.iterations);
+        solve_level(encoded_level, refitted, options, basin_bounds(minima[best]), 40, 1e-8, result.iterations, relay);
         PhotoParameters shift{};
         for (std::size_t k = 0; k < shift.size(); ++k) shift[k] = refitted[k] - result.values[k];
         result.encoding_shift = shift;
     }
-    if (progress) progress(0.98);
+    reached(0.98);
 
     const std::unique_ptr<ceres::Problem> final_problem = make_problem(*fine, result.values, options, bounds);
     uncertainties(*final_problem, cost, *fine, result, options);
@@ -572,7 +594,7 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
                                        : "no acceptable fit: the best model explains only " +
                                              format_significant(100.0 * statistics.explained_variance, 3) + "% of the photo's variance (cost " +
                                              format_significant(best_cost, 4) + " per residual, rms residual " + format_significant(statistics.rms, 3) + ")";
-    if (progress) progress(1.0);
+    reached(1.0);
     return result;
 }
 

@@ -1,5 +1,6 @@
 #include "petroscope/io/interface_case.hpp"
 
+#include "petroscope/core/text.hpp"
 #include "petroscope/io/data_files.hpp"
 #include "petroscope/io/json_reader.hpp"
 #include "petroscope/optics/orientation.hpp"
@@ -64,14 +65,18 @@ OpticalMedium parse_medium(const JsonValue& medium, double wavelength_nm, const 
     return OpticalMedium::from_n_kappa(n, mineral->principal_kappa(wavelength_nm), result.axes);
 }
 
+constexpr const char* kIncidentModeExpected =
+    "medium 1 is anisotropic: expected the name of the incident mode (\"fast\", \"slow\", \"ordinary\", \"extraordinary\")";
+
 // Polarization of the incident wave (docs/interface.md).
 void parse_polarization(const JsonValue& value, bool anisotropic_medium, InterfaceIncidence& incidence) {
     const double root_half = std::sqrt(0.5);
     if (value.raw().is_string()) {
         const std::string text = value.text();
         if (anisotropic_medium) {
-            incidence.mode = text;
-            return;
+            incidence.mode = parse_wave_mode(text);
+            if (incidence.mode && *incidence.mode != InterfaceMode::isotropic) return;
+            throw value.error(std::string(kIncidentModeExpected) + ", not " + quote_input(text));
         }
         if (text == "unpolarized") {
             incidence.coherency = CoherencyMatrix::Identity() * 0.5;
@@ -83,7 +88,7 @@ void parse_polarization(const JsonValue& value, bool anisotropic_medium, Interfa
             throw value.error("expected \"unpolarized\", \"s\", \"p\" or an object ({\"linear_deg\": a}, {\"jones_sp\": …}, {\"stokes\": …}, {\"circular\": \"left\"|\"right\"})");
         }
     } else if (anisotropic_medium) {
-        throw value.error("medium 1 is anisotropic: expected the name of the incident mode (\"fast\", \"slow\", \"ordinary\", \"extraordinary\")");
+        throw value.error(kIncidentModeExpected);
     } else if (value.has("linear_deg")) {
         const double angle = value["linear_deg"].number() * std::numbers::pi / 180.0;
         incidence.jones = JonesVector(std::cos(angle), std::sin(angle));
@@ -145,7 +150,7 @@ nlohmann::json interface_result_json(const InterfaceResult& result) {
     for (const InterfaceWave& wave : result.waves) {
         nlohmann::json entry{
             {"kind", wave.kind == InterfaceWave::Kind::reflected ? "reflected" : "transmitted"},
-            {"mode", wave.mode},
+            {"mode", wave_mode_name(wave.mode)},
             {"direction", vector_json(wave.direction)},
             {"ray_direction", vector_json(wave.ray_direction)},
             {"n", wave.n.imag() == 0.0 ? nlohmann::json(wave.n.real()) : complex_json(wave.n)},

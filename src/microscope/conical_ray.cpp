@@ -11,9 +11,6 @@
 #include <cmath>
 #include <numbers>
 #include <random>
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 namespace petroscope {
 namespace {
@@ -154,7 +151,7 @@ double conical_cone_angle_rad(const Eigen::Vector3d& principal_n) {
     return std::atan(std::sqrt((b2 - a2) * (g2 - b2)) / (n[0] * n[2]));
 }
 
-ConicalRayResult trace_conical_rays(const ConicalRaySettings& settings, const std::function<void(double)>& progress) {
+ConicalRayResult trace_conical_rays(const ConicalRaySettings& settings, const ProgressCallback& progress) {
     validate(settings);
     ConicalRayResult result;
     const double chi = conical_cone_angle_rad(settings.principal_n);
@@ -176,6 +173,7 @@ ConicalRayResult trace_conical_rays(const ConicalRaySettings& settings, const st
     const double pixel_um = 2.0 * half_width / size;
     double max_sum = 0.0;
     std::int64_t non_finite = 0;
+    ProgressRelay relay(progress);
 
 #pragma omp parallel reduction(max : max_sum) reduction(+ : non_finite)
     {
@@ -183,6 +181,7 @@ ConicalRayResult trace_conical_rays(const ConicalRaySettings& settings, const st
         std::vector<Landing> local_landings;
 #pragma omp for schedule(dynamic, 256)
         for (std::int64_t ray = 0; ray < settings.rays; ++ray) {
+            if (relay.cancelled()) continue;
             std::mt19937_64 rng(settings.seed * 0x9E3779B97F4A7C15ULL + static_cast<std::uint64_t>(ray));
             Eigen::Vector2d start = Eigen::Vector2d::Zero();
             Eigen::Vector3d direction;
@@ -228,12 +227,7 @@ ConicalRayResult trace_conical_rays(const ConicalRaySettings& settings, const st
                     local_landings.push_back({landing.x(), landing.y(), weight});
                 }
             }
-#ifdef _OPENMP
-            const bool reporter = omp_get_thread_num() == 0;
-#else
-            const bool reporter = true;
-#endif
-            if (progress && reporter && ray % 4096 == 0) progress(static_cast<double>(ray) / static_cast<double>(settings.rays));
+            if (ray % 4096 == 0) relay.report(static_cast<double>(ray) / static_cast<double>(settings.rays));
         }
 #pragma omp critical
         {
@@ -241,7 +235,8 @@ ConicalRayResult trace_conical_rays(const ConicalRaySettings& settings, const st
             landings.insert(landings.end(), local_landings.begin(), local_landings.end());
         }
     }
-    if (progress) progress(1.0);
+    relay.stop_if_cancelled();
+    relay.report(1.0);
     result.rings = measure_rings(landings, result.ring_radius_um);
     result.max_interface_power_sum = max_sum;
     result.non_finite = non_finite;

@@ -2,7 +2,6 @@
 
 #include "conoscope_evaluator.hpp"
 #include "conoscope_stack.hpp"
-#include "row_progress.hpp"
 
 #include "petroscope/core/error.hpp"
 #include "petroscope/core/text.hpp"
@@ -91,6 +90,7 @@ Image render_conoscope(const ConoscopeSettings& settings, const PrincipalIndexFu
     const detail::ConoscopeEvaluator evaluator(settings, principal_n);
     const int size = settings.size_px;
     Image image(size, size, integrator != nullptr ? 3 : 1);
+    ProgressRelay relay(progress);
     std::atomic<int> rows_done{0};
     const double aperture_squared = settings.numerical_aperture * settings.numerical_aperture;
 
@@ -122,6 +122,7 @@ Image render_conoscope(const ConoscopeSettings& settings, const PrincipalIndexFu
         };
 #pragma omp for schedule(dynamic, 2)
         for (int row = 0; row < paired_rows; ++row) {
+            if (relay.cancelled()) continue;
             const int columns = (size % 2 == 1 && row == size / 2) ? size / 2 + 1 : size;
             bool continues_row = false;  // white light: the previous pixel's roots start the iterations
             for (int column = 0; column < columns; ++column) {
@@ -142,10 +143,11 @@ Image render_conoscope(const ConoscopeSettings& settings, const PrincipalIndexFu
                 store(size - 1 - column, size - 1 - row, minus);
             }
             if (!batch_xi.empty()) flush_batch();
-            detail::row_done(progress, rows_done, paired_rows);
+            relay.count_done(rows_done, paired_rows);
         }
     }
-    if (progress) progress(1.0);
+    relay.stop_if_cancelled();
+    relay.report(1.0);
     return image;
 }
 

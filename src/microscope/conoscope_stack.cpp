@@ -2,7 +2,6 @@
 // wavevector ξ = NA·(x, y) (in air), sent through the same optical train as the orthoscope's
 // (polarizing_microscope.hpp). One MicroscopeOptics per image point (what depends on the wavelength only is shared), single pass or exact 4×4.
 #include "conoscope_stack.hpp"
-#include "row_progress.hpp"
 
 #include <atomic>
 
@@ -24,12 +23,14 @@ Image render_conoscope_through_stack(const ConoscopeSettings& settings, const Pr
     const int size = settings.size_px;
     Image image(size, size, integrator != nullptr ? 3 : 1);
     const double aperture_squared = settings.numerical_aperture * settings.numerical_aperture;
+    ProgressRelay relay(progress);
     std::atomic<int> rows_done{0};
 #pragma omp parallel
     {
         std::vector<double> spectrum;
 #pragma omp for schedule(dynamic, 1)
         for (int row = 0; row < size; ++row) {
+            if (relay.cancelled()) continue;
             for (int column = 0; column < size; ++column) {
                 const Eigen::Vector2d xi = conoscope_tangential_wavevector(settings, column, row);
                 if (xi.squaredNorm() > aperture_squared) continue;
@@ -42,10 +43,11 @@ Image render_conoscope_through_stack(const ConoscopeSettings& settings, const Pr
                 const Eigen::Vector3d xyz = integrator->integrate(spectrum);
                 for (int c = 0; c < 3; ++c) image.at(column, row, c) = static_cast<float>(xyz[c]);
             }
-            row_done(progress, rows_done, size);
+            relay.count_done(rows_done, size);
         }
     }
-    if (progress) progress(1.0);
+    relay.stop_if_cancelled();
+    relay.report(1.0);
     return image;
 }
 

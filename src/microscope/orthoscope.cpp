@@ -126,10 +126,11 @@ Image render_orthoscope(const ThinSection& section, const MineralCatalog& catalo
     const double middle_wavelength_nm = wavelengths[wavelengths.size() / 2];
     const MicroscopeOptics optics(settings.microscope, settings.mounting);
     std::vector<GrainTable> tables(grain_count);
-    std::atomic<std::size_t> grains_done{0};
+    ProgressRelay relay(progress);
+    std::atomic<int> grains_done{0};
 #pragma omp parallel for schedule(dynamic)
     for (std::size_t g = 0; g < grain_count; ++g) {
-        if (!std::isfinite(thinnest[g])) continue;  // not in view
+        if (!std::isfinite(thinnest[g]) || relay.cancelled()) continue;  // not in view, or cancelled
         GrainTable& table = tables[g];
         const double span = thickest[g] - thinnest[g];
         table.first_um = thinnest[g];
@@ -150,12 +151,9 @@ Image render_orthoscope(const ThinSection& section, const MineralCatalog& catalo
                 table.values[k] = static_cast<float>(spectrum[0]);
             }
         }
-        const std::size_t done = ++grains_done;
-        if (progress) {
-#pragma omp critical(orthoscope_progress)
-            progress(static_cast<double>(done) / static_cast<double>(grain_count));
-        }
+        relay.count_done(grains_done, static_cast<int>(grain_count));
     }
+    relay.stop_if_cancelled();
 
     Image image(section.width_px, section.height_px, channels);
 #pragma omp parallel for schedule(static)

@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace petroscope {
@@ -56,16 +57,16 @@ OpticalMedium in_frame(const OpticalMedium& medium, const Eigen::Matrix3d& frame
     return OpticalMedium{medium.principal_n, frame * medium.axes};
 }
 
-// The name of anisotropic mode `sheet` (0: smaller Re n).
-std::string mode_name(const OpticalMedium& medium, const LocalModes& modes, Extended xi, int sheet, bool forward) {
-    if (!medium.is_uniaxial()) return sheet == 0 ? "fast" : "slow";
+// The mode of anisotropic sheet `sheet` (0: smaller Re n).
+InterfaceMode anisotropic_mode(const OpticalMedium& medium, const LocalModes& modes, Extended xi, int sheet, bool forward) {
+    if (!medium.is_uniaxial()) return sheet == 0 ? InterfaceMode::fast : InterfaceMode::slow;
     // Uniaxial: the ordinary wave is the one whose index is n_o (the repeated principal index).
     const complex n_o_double = medium.principal_n[0] == medium.principal_n[1] ? medium.principal_n[0] : medium.principal_n[2];
     const ExtendedComplex n_o(n_o_double.real(), n_o_double.imag());
     const auto& pair = forward ? modes.forward : modes.backward;
     const auto distance = [&](const LocalMode& mode) { return std::abs(mode_index(xi, mode) - n_o); };
     const bool first_is_ordinary = distance(pair[0]) <= distance(pair[1]);
-    return (sheet == 0) == first_is_ordinary ? "ordinary" : "extraordinary";
+    return (sheet == 0) == first_is_ordinary ? InterfaceMode::ordinary : InterfaceMode::extraordinary;
 }
 
 ExtendedVector4 tangential(const LocalMode& mode) {
@@ -102,7 +103,7 @@ void orthogonalize_fluxes(const std::vector<LocalMode*>& modes) {
 struct Group {
     std::vector<const LocalMode*> modes;
     std::vector<int> unknowns;  // their columns in the boundary system
-    std::string name;
+    InterfaceMode mode;
     InterfaceWave::Kind kind;
 };
 
@@ -124,7 +125,18 @@ void check_medium(const OpticalMedium& medium, const std::string& what) {
     }
 }
 
+// Indexed by InterfaceMode.
+constexpr std::array<std::string_view, 5> kModeNames{"s+p", "fast", "slow", "ordinary", "extraordinary"};
+
 }  // namespace
+
+std::string_view wave_mode_name(InterfaceMode mode) { return kModeNames[static_cast<std::size_t>(mode)]; }
+
+std::optional<InterfaceMode> parse_wave_mode(std::string_view name) {
+    const auto found = std::find(kModeNames.begin(), kModeNames.end(), name);
+    if (found == kModeNames.end()) return std::nullopt;
+    return static_cast<InterfaceMode>(found - kModeNames.begin());
+}
 
 InterfaceResult solve_interface(const Eigen::Vector3d& normal_in, const InterfaceIncidence& incidence, const OpticalMedium& medium1,
                                 const OpticalMedium& medium2) {
@@ -149,16 +161,17 @@ InterfaceResult solve_interface(const Eigen::Vector3d& normal_in, const Interfac
         result.incident_n = medium1.principal_n[0];
     } else {
         const ModePair pair = eigenmodes(BinormalFrame(Indicatrix{medium1.real_n(), medium1.axes}), k_hat);
-        if (incidence.mode == "fast" || incidence.mode == "slow") {
-            incident_sheet = incidence.mode == "fast" ? 0 : 1;
-        } else if (medium1.is_uniaxial() && (incidence.mode == "ordinary" || incidence.mode == "extraordinary")) {
+        const std::optional<InterfaceMode> mode = incidence.mode;
+        if (mode == InterfaceMode::fast || mode == InterfaceMode::slow) {
+            incident_sheet = mode == InterfaceMode::fast ? 0 : 1;
+        } else if (medium1.is_uniaxial() && (mode == InterfaceMode::ordinary || mode == InterfaceMode::extraordinary)) {
             const double n_o = medium1.principal_n[0] == medium1.principal_n[1] ? medium1.principal_n[0].real() : medium1.principal_n[2].real();
             const bool fast_is_ordinary = std::abs(pair.fast.n - n_o) <= std::abs(pair.slow.n - n_o);
-            incident_sheet = (incidence.mode == "ordinary") == fast_is_ordinary ? 0 : 1;
+            incident_sheet = (mode == InterfaceMode::ordinary) == fast_is_ordinary ? 0 : 1;
         } else {
             throw bad("medium 1 is anisotropic: the incident wave must be one of its modes, \"fast\" or \"slow\"" +
-                      std::string(medium1.is_uniaxial() ? " (or \"ordinary\", \"extraordinary\")" : "") + ", not " +
-                      quote_input(incidence.mode));
+                      std::string(medium1.is_uniaxial() ? " (or \"ordinary\", \"extraordinary\")" : "") +
+                      (mode ? ", not " + quote_input(wave_mode_name(*mode)) : ", but none was given"));
         }
         result.incident_n = incident_sheet == 0 ? pair.fast.n : pair.slow.n;
     }
@@ -225,10 +238,10 @@ InterfaceResult solve_interface(const Eigen::Vector3d& normal_in, const Interfac
         const int base = reflected ? 0 : 2;
         const auto kind = reflected ? InterfaceWave::Kind::reflected : InterfaceWave::Kind::transmitted;
         if (medium.is_isotropic()) {
-            groups.push_back({{&pair[0], &pair[1]}, {base, base + 1}, "s+p", kind});
+            groups.push_back({{&pair[0], &pair[1]}, {base, base + 1}, InterfaceMode::isotropic, kind});
         } else {
             for (int sheet = 0; sheet < 2; ++sheet) {
-                groups.push_back({{&pair[static_cast<std::size_t>(sheet)]}, {base + sheet}, mode_name(local, modes, xi, sheet, !reflected), kind});
+                groups.push_back({{&pair[static_cast<std::size_t>(sheet)]}, {base + sheet}, anisotropic_mode(local, modes, xi, sheet, !reflected), kind});
             }
         }
     };
@@ -239,7 +252,7 @@ InterfaceResult solve_interface(const Eigen::Vector3d& normal_in, const Interfac
     for (const Group& group : groups) {
         InterfaceWave wave;
         wave.kind = group.kind;
-        wave.mode = group.name;
+        wave.mode = group.mode;
         const LocalMode& lead = *group.modes.front();
         wave.n = rounded(mode_index(xi, lead));
         const Eigen::Matrix<Extended, 3, 1> direction(xi, 0.0L, lead.q.real());

@@ -14,11 +14,11 @@ namespace {
 // works in extended precision).
 constexpr double kSameDirection = 1.0 - 1e-7;
 
-const InterfaceWave* find_wave(const InterfaceResult& result, InterfaceWave::Kind kind, const Eigen::Vector3d& direction, const std::string* mode) {
+const InterfaceWave* find_wave(const InterfaceResult& result, InterfaceWave::Kind kind, const Eigen::Vector3d& direction) {
     const InterfaceWave* best = nullptr;
     double best_dot = kSameDirection;
     for (const InterfaceWave& wave : result.waves) {
-        if (wave.kind != kind || wave.evanescent || (mode && wave.mode != *mode)) continue;
+        if (wave.kind != kind || wave.evanescent) continue;
         const double dot = wave.direction.dot(direction);
         if (dot > best_dot) {
             best_dot = dot;
@@ -53,7 +53,7 @@ std::vector<Branch> branches(const InterfaceResult& result, bool crystal_reflect
     for (const InterfaceWave& wave : result.waves) {
         if (wave.evanescent || !(wave.power > 0.0)) continue;
         const bool in_crystal = (wave.kind == InterfaceWave::Kind::reflected) == crystal_reflects;
-        out.push_back({in_crystal, in_crystal ? wave.mode : std::string(), wave.direction, wave.ray_direction, wave.power, wave.stokes});
+        out.push_back({in_crystal, wave.mode, wave.direction, wave.ray_direction, wave.power, wave.stokes});
     }
     return out;
 }
@@ -87,7 +87,7 @@ std::vector<Branch> branches_from_outside(const Eigen::Vector3d& outward, const 
     return branches(solve_interface(-outward, incidence, outside, crystal), false);
 }
 
-std::vector<Branch> branches_from_inside(const Eigen::Vector3d& outward, const Eigen::Vector3d& wave_normal, const std::string& mode,
+std::vector<Branch> branches_from_inside(const Eigen::Vector3d& outward, const Eigen::Vector3d& wave_normal, InterfaceMode mode,
                                          const OpticalMedium& outside, const OpticalMedium& crystal) {
     InterfaceIncidence incidence;
     incidence.direction = wave_normal;
@@ -100,7 +100,7 @@ std::optional<Eigen::Matrix4d> reflection_mueller(const Eigen::Vector3d& outward
     const std::array<InterfaceResult, 4> results = solve_basis_states(-outward, -branch, outside, crystal);
     std::array<Eigen::Vector4d, 4> out;
     for (std::size_t k = 0; k < 4; ++k) {
-        const InterfaceWave* wave = find_wave(results[k], InterfaceWave::Kind::reflected, -traced, nullptr);
+        const InterfaceWave* wave = find_wave(results[k], InterfaceWave::Kind::reflected, -traced);
         if (!wave) return std::nullopt;
         out[k] = wave->stokes;
     }
@@ -111,12 +111,12 @@ std::optional<Eigen::Matrix4d> reflection_mueller(const Eigen::Vector3d& outward
 }
 
 std::optional<Eigen::Vector4d> refraction_out_stokes(const Eigen::Vector3d& outward, const Eigen::Vector3d& traced, const Eigen::Vector3d& branch,
-                                                     const std::string& branch_mode, const OpticalMedium& outside, const OpticalMedium& crystal) {
+                                                     InterfaceMode branch_mode, const OpticalMedium& outside, const OpticalMedium& crystal) {
     InterfaceIncidence incidence;
     incidence.direction = -branch;
     incidence.mode = branch_mode;
     const InterfaceResult result = solve_interface(outward, incidence, crystal, outside);
-    const InterfaceWave* wave = find_wave(result, InterfaceWave::Kind::transmitted, -traced, nullptr);
+    const InterfaceWave* wave = find_wave(result, InterfaceWave::Kind::transmitted, -traced);
     if (!wave) return std::nullopt;
     return wave->stokes;
 }

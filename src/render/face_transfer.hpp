@@ -11,7 +11,6 @@
 #include <Eigen/Core>
 
 #include <optional>
-#include <string>
 #include <vector>
 
 namespace petroscope::detail {
@@ -35,7 +34,7 @@ inline bool walks_off(const Eigen::Vector3d& wave_normal_toward_face, const Eige
 /// One wave of the reversed problem: where the traced path continues.
 struct Branch {
     bool in_crystal = false;           // a crystal mode (else a wave in the surrounding air)
-    std::string mode;                  // the crystal mode's name
+    InterfaceMode mode = InterfaceMode::isotropic;  // the wave's mode (isotropic for the outside wave)
     Eigen::Vector3d wave_normal;       // unit, along the traced (backward) direction
     Eigen::Vector3d ray;               // unit ray (Poynting) direction of the traced path
     double power = 0.0;                // of the reversed problem, as a selection weight
@@ -48,7 +47,7 @@ std::vector<Branch> branches_from_outside(const Eigen::Vector3d& outward, const 
                                           const OpticalMedium& crystal);
 /// The traced path arrives inside the crystal in `mode` with `wave_normal` (which must point out through
 /// the face): the branches (reflected modes, the refracted outside wave unless totally reflected).
-std::vector<Branch> branches_from_inside(const Eigen::Vector3d& outward, const Eigen::Vector3d& wave_normal, const std::string& mode,
+std::vector<Branch> branches_from_inside(const Eigen::Vector3d& outward, const Eigen::Vector3d& wave_normal, InterfaceMode mode,
                                          const OpticalMedium& outside, const OpticalMedium& crystal);
 
 /// Forward transfers onto the traced wave. `traced` is the traced wave's backward direction (its wave
@@ -63,7 +62,7 @@ std::optional<Eigen::Matrix4d> reflection_mueller(const Eigen::Vector3d& outward
 /// Crystal mode `branch_mode` (travelling along −branch) → outside light along −traced: its Stokes vector
 /// per unit incident power, basis s_basis(outward, −traced).
 std::optional<Eigen::Vector4d> refraction_out_stokes(const Eigen::Vector3d& outward, const Eigen::Vector3d& traced, const Eigen::Vector3d& branch,
-                                                     const std::string& branch_mode, const OpticalMedium& outside, const OpticalMedium& crystal);
+                                                     InterfaceMode branch_mode, const OpticalMedium& outside, const OpticalMedium& crystal);
 /// Outside light (along −branch, basis s_basis(−outward, −branch)) → crystal mode along −traced, from
 /// the reversed problem's branch of `branches_from_inside` by reciprocity (lossless media; Born & Wolf
 /// §1.5, Potton 2004, Rep. Prog. Phys. 67, 717): the row q with power = q·S is ½(t0, t1, −t2, −t3), t the

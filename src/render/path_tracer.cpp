@@ -8,7 +8,6 @@
 
 #include <Eigen/Geometry>
 
-#include <omp.h>
 
 #include <atomic>
 #include <exception>
@@ -220,7 +219,7 @@ private:
         Eigen::Vector3d s_hat;
         Eigen::Vector4d column = Eigen::Vector4d::Zero();
         int crystal = -1;
-        std::string mode;
+        InterfaceMode mode = InterfaceMode::isotropic;
         Eigen::Vector3d wave_normal = Eigen::Vector3d::Zero();
         int depth = 0;  // crystal-face interactions so far
         int decisions = 0;  // random decisions (branch choices, roulette) so far
@@ -428,6 +427,7 @@ RenderResult render_scene(const Scene& scene, const RenderSpectrum& spectrum, co
             result.standard_error_y.at(column, row, s) = static_cast<float>(std::sqrt(variance / spp));
         }
     };
+    ProgressRelay relay(progress);
     std::atomic<int> rows_done{0};
     RenderStatistics totals;
     std::exception_ptr failure;
@@ -440,15 +440,14 @@ RenderResult render_scene(const Scene& scene, const RenderSpectrum& spectrum, co
             bool failed = false;
 #pragma omp critical(render_failure)
             failed = static_cast<bool>(failure);
-            if (failed) continue;
+            if (failed || relay.cancelled()) continue;
             try {
                 for (int column = 0; column < width; ++column) render_pixel(column, row, statistics);
             } catch (...) {
 #pragma omp critical(render_failure)
                 if (!failure) failure = std::current_exception();
             }
-            const int done = ++rows_done;
-            if (progress && omp_get_thread_num() == 0) progress(static_cast<double>(done) / height);
+            relay.count_done(rows_done, height);
         }
 #pragma omp critical
         {
@@ -461,7 +460,8 @@ RenderResult render_scene(const Scene& scene, const RenderSpectrum& spectrum, co
         }
     }
     if (failure) std::rethrow_exception(failure);
-    if (progress) progress(1.0);
+    relay.stop_if_cancelled();
+    relay.report(1.0);
     totals.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     result.statistics = totals;
     return result;

@@ -19,7 +19,23 @@ double sample_count(double start_nm, double end_nm, double step_nm) {
 
 constexpr double kMaxSamples = 100000;
 
+// Why a grid is not usable, or empty.
+std::string grid_problem(double start_nm, double end_nm, double step_nm) {
+    if (!std::isfinite(start_nm) || !std::isfinite(end_nm) || !std::isfinite(step_nm)) return "not a finite number";
+    if (start_nm <= 0.0 || end_nm < start_nm) return "need 0 < START <= END";
+    if (step_nm <= 0.0) return "STEP must be > 0";
+    if (!(sample_count(start_nm, end_nm, step_nm) <= kMaxSamples)) return "more than 100000 wavelengths";
+    return {};
+}
+
 }  // namespace
+
+void WavelengthGrid::validate() const {
+    if (const std::string problem = grid_problem(start_nm, end_nm, step_nm); !problem.empty()) {
+        throw InputError("invalid wavelength grid " + format_number(start_nm) + ":" + format_number(end_nm) + ":" + format_number(step_nm) +
+                         ": " + problem + " (expected START:END:STEP in nm, e.g. 380:780:5)");
+    }
+}
 
 int WavelengthGrid::size() const {
     return static_cast<int>(std::min(sample_count(start_nm, end_nm, step_nm), kMaxSamples));
@@ -46,9 +62,7 @@ WavelengthGrid WavelengthGrid::parse(std::string_view text) {
     const auto end = parse_double(parts[1]);
     const auto step = parse_double(parts[2]);
     if (!start || !end || !step) throw fail("not a number");
-    if (*start <= 0.0 || *end < *start) throw fail("need 0 < START <= END");
-    if (*step <= 0.0) throw fail("STEP must be > 0");
-    if (!(sample_count(*start, *end, *step) <= kMaxSamples)) throw fail("more than 100000 wavelengths");
+    if (const std::string problem = grid_problem(*start, *end, *step); !problem.empty()) throw fail(problem);
     return WavelengthGrid{*start, *end, *step};
 }
 

@@ -1,6 +1,8 @@
 #include "petroscope/verification/interface_cases.hpp"
 
 #include "petroscope/core/error.hpp"
+#include "petroscope/core/text.hpp"
+#include "petroscope/io/json_reader.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -21,6 +23,14 @@ double tolerance_of(const json& wave, const std::string& key, double fallback) {
 
 std::string kind_name(InterfaceWave::Kind kind) { return kind == InterfaceWave::Kind::reflected ? "reflected" : "transmitted"; }
 
+// An expected wave's "mode": a mode's name, or "total" (nothing: every wave of its kind).
+std::optional<InterfaceMode> expected_mode(const JsonValue& value) {
+    const std::string text = value.text();
+    if (text == "total") return std::nullopt;
+    if (const std::optional<InterfaceMode> mode = parse_wave_mode(text)) return mode;
+    throw value.error("expected \"total\", \"s+p\", \"fast\", \"slow\", \"ordinary\" or \"extraordinary\", not " + quote_input(text));
+}
+
 // The polarization ellipse's b/a, tan|χ| with sin 2χ = S3/S0.
 double ellipticity(const Eigen::Vector4d& stokes) {
     return std::tan(0.5 * std::abs(std::asin(std::clamp(stokes[3] / stokes[0], -1.0, 1.0))));
@@ -38,18 +48,21 @@ VerificationTest check_interface_case(const InterfaceCase& interface_case) {
     const json& expected = interface_case.document.at("expected");
     std::vector<bool> matched(result.waves.size(), false);
     double smallest_power_tolerance = std::numeric_limits<double>::infinity();
-    for (const json& wave : expected.at("waves")) {
+    const JsonValue expected_waves = JsonValue(interface_case.document, interface_case.file, "")["expected"]["waves"];
+    for (std::size_t w = 0; w < expected_waves.size(); ++w) {
+        const JsonValue entry = expected_waves.at(w);
+        const json& wave = entry.raw();
         const std::string kind = wave.at("kind").get<std::string>();
-        const std::string mode = wave.at("mode").get<std::string>();
-        const std::string label = kind + " " + mode;
+        const std::optional<InterfaceMode> mode = expected_mode(entry["mode"]);
+        const std::string label = kind + " " + entry["mode"].text();
         const double power_tolerance = tolerance_of(wave, "power", 1e-12);
         smallest_power_tolerance = std::min(smallest_power_tolerance, power_tolerance);
         // Candidates: the same kind, and the same mode unless the expected wave is the "total" of its kind.
         std::vector<std::size_t> candidates;
         for (std::size_t i = 0; i < result.waves.size(); ++i) {
-            if (kind_name(result.waves[i].kind) == kind && (mode == "total" || result.waves[i].mode == mode)) candidates.push_back(i);
+            if (kind_name(result.waves[i].kind) == kind && (!mode || result.waves[i].mode == *mode)) candidates.push_back(i);
         }
-        if (mode == "total") {
+        if (!mode) {
             double total = 0.0;
             for (const std::size_t i : candidates) {
                 total += result.waves[i].power;
@@ -114,7 +127,7 @@ VerificationTest check_interface_case(const InterfaceCase& interface_case) {
     // Rule 5: a reported wave that matches nothing carries no power.
     for (std::size_t i = 0; i < result.waves.size(); ++i) {
         if (!matched[i]) {
-            test.check("power of unexpected " + kind_name(result.waves[i].kind) + " " + result.waves[i].mode, result.waves[i].power, 0.0,
+            test.check("power of unexpected " + kind_name(result.waves[i].kind) + " " + std::string(wave_mode_name(result.waves[i].mode)), result.waves[i].power, 0.0,
                        std::isfinite(smallest_power_tolerance) ? smallest_power_tolerance : 1e-12);
         }
     }

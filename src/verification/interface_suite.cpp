@@ -31,9 +31,9 @@ InterfaceIncidence polarized(const Eigen::Vector3d& direction, const JonesVector
     return incidence;
 }
 
-const InterfaceWave* wave_of(const InterfaceResult& result, Kind kind, const std::string& mode = "") {
+const InterfaceWave* wave_of(const InterfaceResult& result, Kind kind, std::optional<InterfaceMode> mode = std::nullopt) {
     for (const InterfaceWave& wave : result.waves) {
-        if (wave.kind == kind && (mode.empty() || wave.mode == mode)) return &wave;
+        if (wave.kind == kind && (!mode || wave.mode == *mode)) return &wave;
     }
     return nullptr;
 }
@@ -192,10 +192,10 @@ VerificationTest uniaxial_laws(int cases) {
         const double theta = 89.9 * kDegree * unit(rng), phi = 2 * std::numbers::pi * unit(rng);
         const Eigen::Vector3d k_in(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
         const InterfaceResult entry = solve_interface({0, 0, 1}, unpolarized(k_in), OpticalMedium::isotropic(1.0), calcite);
-        const InterfaceWave& o = *wave_of(entry, Kind::transmitted, "ordinary");
+        const InterfaceWave& o = *wave_of(entry, Kind::transmitted, InterfaceMode::ordinary);
         worst_snell = std::max({worst_snell, std::abs(std::sin(theta) - 1.6584 * o.direction.cross(Eigen::Vector3d::UnitZ()).norm()),
                                 std::abs(o.n.real() - 1.6584)});
-        for (const std::string mode : {"ordinary", "extraordinary"}) {
+        for (const InterfaceMode mode : {InterfaceMode::ordinary, InterfaceMode::extraordinary}) {
             InterfaceIncidence inside;
             inside.direction = wave_of(entry, Kind::transmitted, mode)->direction;
             inside.mode = mode;
@@ -217,7 +217,7 @@ InterfaceIncidence random_incidence(std::mt19937_64& rng, const OpticalMedium& m
     InterfaceIncidence incidence;
     incidence.direction = direction;
     if (!medium1.is_isotropic()) {
-        incidence.mode = unit(rng) < 0.5 ? "fast" : "slow";
+        incidence.mode = unit(rng) < 0.5 ? InterfaceMode::fast : InterfaceMode::slow;
     } else {
         const Eigen::Vector3d axis = unit_vector(rng) * unit(rng);  // partially polarized
         incidence.coherency = coherency_from_stokes({1.0, axis.x(), axis.y(), axis.z()});
@@ -305,7 +305,7 @@ VerificationTest against_berreman(int cases) {
         if (medium1.is_isotropic()) {
             incidence = polarized(direction, jones);
         } else {
-            incidence.mode = unit(rng) < 0.5 ? "fast" : "slow";
+            incidence.mode = unit(rng) < 0.5 ? InterfaceMode::fast : InterfaceMode::slow;
         }
         const InterfaceResult result = solve_interface({0, 0, 1}, incidence, medium1, medium2);
         // The same incident wave as Berreman's tangential field: ξ from the interface solution.

@@ -2,9 +2,8 @@
 // Photographs of conoscopic figures made the way a camera makes them, for the fitting tests: the figure
 // rendered by the conoscope renderer with the field's centre, scale and the camera's rotation applied,
 // averaged over each pixel's area, then blur, white balance, a tone curve, noise, 8-bit quantisation and JPEG compression (OpenCV).
-#include "petroscope/fit/conoscope_fit.hpp"
+#include "petroscope/api/conoscope_photo_model.hpp"
 #include "petroscope/io/data_files.hpp"
-#include "petroscope/optics/orientation.hpp"
 #include "petroscope/spectral/color.hpp"
 #include "petroscope/spectral/wavelength_grid.hpp"
 
@@ -42,32 +41,25 @@ struct PhotoTruth {
 /// White light (D65, 380 … 780 nm by 5 nm) or one wavelength.
 struct PhotoLight {
     std::vector<double> wavelengths_nm;
-    std::vector<Eigen::Vector3d> rgb_per_transmission;
     std::shared_ptr<SpectralIntegrator> integrator;  // white light only
     Eigen::Matrix3d display = Eigen::Matrix3d::Identity();
 };
 
+/// D65 over 380 … 780 nm by 5 nm, white balanced: the default Light.
 inline PhotoLight white_light() {
     PhotoLight light;
-    light.wavelengths_nm = WavelengthGrid{380.0, 780.0, 5.0}.wavelengths_nm();
+    light.wavelengths_nm = Light{}.wavelengths_nm();
     light.integrator = std::make_shared<SpectralIntegrator>(light.wavelengths_nm, load_cie_1931_observer(), load_light_source("D65"));
     light.display = xyz_to_display_matrix(light.integrator->white_xyz(), true, 1.0);
-    for (const Eigen::Vector3d& weight : light.integrator->weights()) light.rgb_per_transmission.push_back(light.display * weight);
     return light;
 }
 
-/// The fit's model of photos of `mineral` in `cut`, crossed polars, NA 0.85, balsam around the slab.
-inline ConoscopePhotoModel photo_model(const Mineral& mineral, Cut cut, const PhotoLight& light) {
-    ConoscopePhotoModel model;
-    model.settings.wavelengths_nm = light.wavelengths_nm;
-    model.principal_n = [&mineral](double nm) { return mineral.principal_n(nm); };
-    const Eigen::Vector3d reference_n = mineral.principal_n(mineral.reference_wavelength_nm);
-    const OpticalClass optical_class = mineral.optical_class;
-    model.orientation = [cut, optical_class, reference_n](double tilt_deg, double azimuth_deg) {
-        return cut_orientation(cut, optical_class, reference_n, azimuth_deg, tilt_deg);
-    };
-    model.rgb_per_transmission = light.rgb_per_transmission;
-    return model;
+/// The fit's model of photos of `mineral` in `cut`, crossed polars, NA 0.85, balsam around the slab, in the
+/// white light of white_light().
+inline ConoscopePhotoModel photo_model(const Mineral& mineral, Cut cut) {
+    ConoscopePhotoSetup setup;
+    setup.cut = cut;
+    return conoscope_photo_model(mineral, setup);
 }
 
 /// What a camera makes of linear RGB (CV_64FC3, channels R, G, B): `tone` per channel, Gaussian noise of

@@ -41,7 +41,7 @@ struct Fitted {
 Fitted fit_synthetic(const FitCase& c, int size_px, const std::function<Image(const Image&)>& encoding = {}) {
     const Mineral& mineral = testing::fit_minerals().find(c.mineral);
     static const testing::PhotoLight light = testing::white_light();
-    const ConoscopePhotoModel model = testing::photo_model(mineral, c.cut, light);
+    const ConoscopePhotoModel model = testing::photo_model(mineral, c.cut);
     testing::PhotoTruth truth;
     truth.thickness_um = c.thickness_um;
     truth.center_dx_px = c.center_dx_px;

@@ -18,9 +18,9 @@
 namespace petroscope {
 namespace {
 
-const InterfaceWave& wave_of(const InterfaceResult& result, InterfaceWave::Kind kind, const std::string& mode = "") {
+const InterfaceWave& wave_of(const InterfaceResult& result, InterfaceWave::Kind kind, std::optional<InterfaceMode> mode = std::nullopt) {
     for (const InterfaceWave& wave : result.waves) {
-        if (wave.kind == kind && (mode.empty() || wave.mode == mode)) return wave;
+        if (wave.kind == kind && (!mode || wave.mode == *mode)) return wave;
     }
     throw std::runtime_error("no such wave");
 }
@@ -38,8 +38,8 @@ TEST(Interface, CalciteAtNormalIncidenceSplitsIntoOrdinaryAndExtraordinary) {
     const OpticalMedium calcite{Eigen::Vector3cd(n_o, n_o, n_e), euler_zyz_deg(0.0, 45.0, 0.0)};
     InterfaceIncidence unpolarized;
     const InterfaceResult result = solve_interface({0, 0, 1}, unpolarized, OpticalMedium::isotropic(1.0), calcite);
-    const InterfaceWave& o = wave_of(result, InterfaceWave::Kind::transmitted, "ordinary");
-    const InterfaceWave& e = wave_of(result, InterfaceWave::Kind::transmitted, "extraordinary");
+    const InterfaceWave& o = wave_of(result, InterfaceWave::Kind::transmitted, InterfaceMode::ordinary);
+    const InterfaceWave& e = wave_of(result, InterfaceWave::Kind::transmitted, InterfaceMode::extraordinary);
     // Both wave normals along the face normal; o with n_o, e with n_e(45°) (Born & Wolf §15.3.3).
     EXPECT_LT((o.direction - Eigen::Vector3d::UnitZ()).norm(), 1e-12);
     EXPECT_LT((e.direction - Eigen::Vector3d::UnitZ()).norm(), 1e-12);
@@ -96,6 +96,24 @@ TEST(Interface, BadInputIsRejected) {
     EXPECT_THROW(solve_interface({0, 0, 1}, InterfaceIncidence{}, air, OpticalMedium::isotropic(-1.5)), InputError);
     const OpticalMedium calcite{Eigen::Vector3cd(1.6584, 1.6584, 1.4864), Eigen::Matrix3d::Identity()};
     EXPECT_THROW(solve_interface({0, 0, 1}, InterfaceIncidence{}, calcite, air), InputError);  // no incident mode named
+}
+
+TEST(Interface, WaveModeNamesRoundTrip) {
+    for (const InterfaceMode mode : {InterfaceMode::isotropic, InterfaceMode::fast, InterfaceMode::slow, InterfaceMode::ordinary, InterfaceMode::extraordinary}) {
+        EXPECT_EQ(parse_wave_mode(wave_mode_name(mode)), mode) << wave_mode_name(mode);
+    }
+    EXPECT_EQ(wave_mode_name(InterfaceMode::isotropic), "s+p");
+    EXPECT_EQ(parse_wave_mode("total"), std::nullopt);
+    EXPECT_EQ(parse_wave_mode(""), std::nullopt);
+    // Biaxial medium 1: a mode is required, and the uniaxial names do not apply.
+    const OpticalMedium air = OpticalMedium::isotropic(1.0);
+    const OpticalMedium biaxial{Eigen::Vector3cd(1.5, 1.6, 1.7), Eigen::Matrix3d::Identity()};
+    InterfaceIncidence incidence;
+    EXPECT_THROW(solve_interface({0, 0, 1}, incidence, biaxial, air), InputError);
+    incidence.mode = InterfaceMode::ordinary;
+    EXPECT_THROW(solve_interface({0, 0, 1}, incidence, biaxial, air), InputError);
+    incidence.mode = InterfaceMode::fast;
+    EXPECT_NO_THROW(solve_interface({0, 0, 1}, incidence, biaxial, air));
 }
 
 }  // namespace

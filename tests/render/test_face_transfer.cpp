@@ -25,7 +25,7 @@ TEST(FaceTransfer, ForwardTransfersIntoACrystalModeAreTheReversedProblemsByRecip
         const OpticalMedium calcite{Eigen::Vector3cd(1.658, 1.658, 1.486), turn.toRotationMatrix()};
         const Eigen::Vector3d wave_normal = (outward + 0.5 * Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng))).normalized();
         if (walks_off(wave_normal, outward)) continue;
-        for (const std::string mode : {"ordinary", "extraordinary"}) {
+        for (const InterfaceMode mode : {InterfaceMode::ordinary, InterfaceMode::extraordinary}) {
             for (const Branch& branch : branches_from_inside(outward, wave_normal, mode, air, calcite)) {
                 if (branch.in_crystal) {
                     // Mode → mode: solve the reversed branch as incident and read the traced mode's power.
@@ -51,7 +51,7 @@ TEST(FaceTransfer, ForwardTransfersIntoACrystalModeAreTheReversedProblemsByRecip
                     incidence.coherency = coherency_from_stokes(state);
                     for (const InterfaceWave& wave : solve_interface(-outward, incidence, air, calcite).waves) {
                         if (wave.kind == InterfaceWave::Kind::transmitted && wave.mode == mode && wave.direction.dot(-wave_normal) > 1.0 - 1e-9) {
-                            EXPECT_NEAR(wave.power, row.dot(state), 1e-10) << mode << " state " << state.transpose();
+                            EXPECT_NEAR(wave.power, row.dot(state), 1e-10) << wave_mode_name(mode) << " state " << state.transpose();
                             ++compared;
                         }
                     }

@@ -2,8 +2,9 @@
 // Internal conical refraction in ray optics: the paper's scene. A filter of thickness h with a pinhole
 // of radius R lies on a biaxial slab (thickness d) cut perpendicular to a binormal; rays through the
 // pinhole are traced through both faces with the exact interface model (optics/interface.hpp) and
-// collected on a screen at distance D behind the slab (physics notes §7).
+// collected on a screen at distance D behind the slab (docs/theory.md §8).
 #include "petroscope/core/image.hpp"
+#include "petroscope/core/progress.hpp"
 
 #include <Eigen/Core>
 
@@ -42,7 +43,7 @@ struct ConicalRayRings {
 
 struct ConicalRayResult {
     Image screen;                      // 1 channel: collected power per pixel (incident power 1 per ray)
-    double ring_radius_um = 0.0;       // R₀ = A·d with A = ½ tan χ (physics notes §7)
+    double ring_radius_um = 0.0;       // R₀ = A·d with A = ½ tan χ (Berry, J. Opt. A 6, 289 (2004); docs/theory.md §8)
     double cone_angle_deg = 0.0;       // χ
     Eigen::Vector2d pinhole_point_um = Eigen::Vector2d::Zero();   // the point below the pinhole on the screen
     Eigen::Vector2d ring_centre_um = Eigen::Vector2d::Zero();     // predicted: R₀ from the pinhole point toward the
@@ -52,10 +53,10 @@ struct ConicalRayResult {
     std::int64_t rays_traced = 0, non_finite = 0;
 };
 
-/// tan χ = √((nβ² − nα²)(nγ² − nβ²))/(nα nγ) (physics notes §7) for indices in any order.
+/// tan χ = √((nβ² − nα²)(nγ² − nβ²))/(nα nγ) (Born & Wolf §15.3.4; docs/theory.md §8) for indices in any order.
 double conical_cone_angle_rad(const Eigen::Vector3d& principal_n);
 
 /// Traces the rays (in parallel); throws InputError for a non-biaxial crystal or non-positive lengths.
-ConicalRayResult trace_conical_rays(const ConicalRaySettings& settings, const std::function<void(double)>& progress = {});
+ConicalRayResult trace_conical_rays(const ConicalRaySettings& settings, const ProgressCallback& progress = {});
 
 }  // namespace petroscope

@@ -9,10 +9,20 @@
 
 #include <complex>
 #include <optional>
-#include <string>
+#include <string_view>
 #include <vector>
 
 namespace petroscope {
+
+/// Which mode a wave is: the one (s+p) wave of an isotropic medium, the fast/slow eigenmodes (by Re n) of
+/// a biaxial one, the ordinary/extraordinary ones of a uniaxial one. (Not eigenmodes.hpp's WaveMode, a
+/// mode's index and fields.)
+enum class InterfaceMode { isotropic, fast, slow, ordinary, extraordinary };
+
+/// The mode's name in files and output: "s+p", "fast", "slow", "ordinary", "extraordinary".
+std::string_view wave_mode_name(InterfaceMode mode);
+/// The inverse of wave_mode_name; nothing for any other text.
+std::optional<InterfaceMode> parse_wave_mode(std::string_view name);
 
 struct InterfaceIncidence {
     /// Wave normal in medium 1 (lab frame); its component along the interface normal must be positive.
@@ -21,17 +31,15 @@ struct InterfaceIncidence {
     CoherencyMatrix coherency = CoherencyMatrix::Identity() * 0.5;
     /// Isotropic medium 1, fully polarized light: the Jones vector, so that output amplitudes are reported.
     std::optional<JonesVector> jones;
-    /// Anisotropic medium 1: which eigenmode is incident: "fast", "slow", or for a uniaxial medium
-    /// "ordinary", "extraordinary".
-    std::string mode;
+    /// Anisotropic medium 1 (required): the incident eigenmode, fast or slow, or for a uniaxial medium
+    /// ordinary or extraordinary.
+    std::optional<InterfaceMode> mode;
 };
 
 struct InterfaceWave {
     enum class Kind { reflected, transmitted };
     Kind kind = Kind::reflected;
-    /// "s+p" for the one wave of an isotropic medium; "ordinary"/"extraordinary" (uniaxial) or
-    /// "fast"/"slow" (biaxial) for the eigenmodes of an anisotropic one.
-    std::string mode;
+    InterfaceMode mode = InterfaceMode::isotropic;
     Eigen::Vector3d direction = Eigen::Vector3d::Zero();      // unit wave normal (Re N), lab frame
     Eigen::Vector3d ray_direction = Eigen::Vector3d::Zero();  // unit time-averaged Poynting vector
     std::complex<double> n = 1.0;                             // √(N·N), N = k/k₀
@@ -60,7 +68,7 @@ struct InterfaceResult {
 /// Solves the boundary conditions (continuous tangential E and H, Born & Wolf §1.1.3) for the plane wave
 /// `incidence` going from medium 1 into medium 2 across the plane with unit normal `normal` (pointing from
 /// medium 1 into medium 2). Medium 1 must be lossless (the incident wave is homogeneous). Throws
-/// InputError for zero or non-finite vectors, an incident direction not toward medium 2, an unknown mode.
+/// InputError for zero or non-finite vectors, an incident direction not toward medium 2, a missing or unsuitable mode.
 InterfaceResult solve_interface(const Eigen::Vector3d& normal, const InterfaceIncidence& incidence, const OpticalMedium& medium1,
                                 const OpticalMedium& medium2);
 

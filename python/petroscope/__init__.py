@@ -1,0 +1,76 @@
+"""petroscope: the polarizing microscope and light in crystals, computed exactly.
+
+Images come back as float32 numpy arrays (height, width, channels) inside a Result, with what their
+channels and values mean and the numbers measured on them. Units are in the argument names
+(thickness_um, wavelength_nm, stage_deg). Bad input raises ValueError or TypeError naming the argument;
+a progress callback that returns False raises Cancelled; Ctrl-C raises KeyboardInterrupt. The
+computations release the GIL, so several threads can compute at once. Guide: docs/python.md.
+"""
+import os as _os
+
+from ._petroscope import (
+    Cancelled,
+    Grain,
+    Light,
+    Mineral,
+    Result,
+    Section,
+    conical,
+    conoscope,
+    indicatrix_axes,
+    michel_levy_colours,
+    mineral,
+    minerals,
+    orthoscope,
+)
+
+__version__ = "0.1.0"
+
+
+def read_section(path):
+    """The thin section of a folder or description file (thin_sections/README.md) as a Section.
+
+    Reading the label image loads the image libraries, so they are loaded here, on first use, and not by
+    `import petroscope`.
+    """
+    from ._files import read_section as _read
+
+    return _read(_os.fspath(path))
+
+
+def michel_levy_chart(*, mineral=None, max_retardation_nm=2000.0, step_nm=1.0, light=None, max_thickness_um=50.0):
+    """The Michel-Lévy chart drawn as the command line draws it: a float32 array (height, width, 3), linear
+    sRGB, interference colours over retardation (x) and thickness up to max_thickness_um (y), with the
+    birefringence lines and labels. The arguments and the colours are michel_levy_colours'. Drawing loads
+    the image libraries (OpenCV) on first use."""
+    from ._files import michel_levy_chart as _draw
+
+    return _draw(mineral=mineral, max_retardation_nm=max_retardation_nm, step_nm=step_nm, light=light, max_thickness_um=max_thickness_um)
+
+
+def read_image(path):
+    """An image file's values as a float32 array (height, width, channels): EXR and TIFF as stored (the
+    command line's float output), PNG and JPEG as codes / 255 (a photo's camera values)."""
+    from ._files import read_image as _read
+
+    return _read(_os.fspath(path))
+
+
+__all__ = [
+    "Cancelled",
+    "Grain",
+    "Light",
+    "Mineral",
+    "Result",
+    "Section",
+    "conical",
+    "conoscope",
+    "indicatrix_axes",
+    "michel_levy_chart",
+    "michel_levy_colours",
+    "mineral",
+    "minerals",
+    "orthoscope",
+    "read_image",
+    "read_section",
+]

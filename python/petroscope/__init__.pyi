@@ -1,0 +1,166 @@
+# Type stubs of the petroscope package: what editors and type checkers read. The docstrings (help())
+# come from the extension module; units are in the argument names.
+import os
+from typing import Callable, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+Progress = Optional[Callable[[float], Optional[bool]]]
+"""Called with the fraction done (0 to 1); return False to cancel (raises Cancelled)."""
+
+LightArgument = Union["Light", float, None]
+"""A Light, a wavelength in nm (monochromatic light), or None (white light, D65)."""
+
+class Cancelled(Exception): ...
+
+class Result:
+    image: npt.NDArray[np.float32]  # (height, width, channels)
+    channels: list[str]
+    pixel_values: str
+    measurements: dict[str, Optional[float]]
+    notes: list[str]
+    details: dict[str, object]
+
+class Light:
+    def __init__(
+        self,
+        *,
+        wavelength_nm: Optional[float] = None,
+        wavelengths_nm: Tuple[float, float, float] = (380.0, 780.0, 5.0),
+        illuminant: str = "D65",
+        white_balance: bool = True,
+        exposure: float = 1.0,
+    ) -> None: ...
+    @property
+    def wavelength_nm(self) -> Optional[float]: ...
+    @property
+    def wavelengths_nm(self) -> list[float]: ...
+    illuminant: str
+    white_balance: bool
+    exposure: float
+
+class Mineral:
+    name: str
+    aliases: list[str]
+    formula: str
+    system: str
+    optical_class: str  # 'isotropic', 'uniaxial' or 'biaxial'
+    reference_wavelength_nm: float
+    source: str
+    file: str
+    def principal_n(self, wavelength_nm: float) -> npt.NDArray[np.float64]: ...
+    def summary(self, wavelength_nm: float) -> dict[str, object]: ...
+
+def minerals() -> list[str]: ...
+def mineral(name: str) -> Mineral: ...
+def indicatrix_axes(
+    mineral: str,
+    *,
+    cut: Optional[str] = None,
+    azimuth_deg: float = 0.0,
+    tilt_deg: float = 0.0,
+    euler_zyz_deg: Optional[Sequence[float]] = None,
+) -> npt.NDArray[np.float64]: ...
+
+class Grain:
+    def __init__(
+        self, label: int, mineral: str, *, euler_zyz_deg: Sequence[float] = (0.0, 0.0, 0.0), thickness_um: Optional[float] = None
+    ) -> None: ...
+    label: int
+    mineral: str
+    thickness_um: Optional[float]
+    @property
+    def euler_zyz_deg(self) -> npt.NDArray[np.float64]: ...
+
+class Section:
+    def __init__(
+        self,
+        labels: npt.ArrayLike,
+        grains: Sequence[Grain],
+        *,
+        pixel_size_um: float = 1.0,
+        thickness_um: float = 30.0,
+        name: str = "section",
+    ) -> None: ...
+    name: str
+    width_px: int
+    height_px: int
+    pixel_size_um: float
+    grains: list[Grain]
+    @property
+    def labels(self) -> npt.NDArray[np.uint16]: ...
+
+def michel_levy_colours(
+    *, mineral: Optional[str] = None, max_retardation_nm: float = 2000.0, step_nm: float = 1.0, light: LightArgument = None
+) -> dict[str, object]: ...
+def michel_levy_chart(
+    *,
+    mineral: Optional[str] = None,
+    max_retardation_nm: float = 2000.0,
+    step_nm: float = 1.0,
+    light: LightArgument = None,
+    max_thickness_um: float = 50.0,
+) -> npt.NDArray[np.float32]: ...
+def read_section(path: Union[str, os.PathLike[str]]) -> Section: ...
+def read_image(path: Union[str, os.PathLike[str]]) -> npt.NDArray[np.float32]: ...
+def conoscope(
+    *,
+    mineral: str = "muscovite",
+    thickness_um: float = 30.0,
+    cut: Optional[str] = None,
+    azimuth_deg: float = 0.0,
+    tilt_deg: float = 0.0,
+    euler_zyz_deg: Optional[Sequence[float]] = None,
+    numerical_aperture: float = 0.85,
+    size_px: int = 512,
+    light: LightArgument = None,
+    stage_deg: float = 0.0,
+    polarizer_deg: float = 0.0,
+    analyzer_deg: float = 90.0,
+    analyzer_in: bool = True,
+    surround_n: float = 1.54,
+    mounting: str = "immersed",
+    plate: Optional[str] = None,
+    plate_slow_deg: float = 45.0,
+    wedge_position: float = 0.5,
+    progress: Progress = None,
+) -> Result: ...
+def orthoscope(
+    section: Section,
+    *,
+    analyzer_in: bool = True,
+    stage_deg: float = 0.0,
+    polarizer_deg: float = 0.0,
+    analyzer_deg: float = 90.0,
+    plate: Optional[str] = None,
+    plate_slow_deg: float = 45.0,
+    wedge_position: float = 0.5,
+    condenser_na: float = 0.0,
+    condenser_rings: int = 0,
+    thickness_um: Optional[float] = None,
+    exact: bool = False,
+    light: LightArgument = None,
+    progress: Progress = None,
+) -> Result: ...
+def conical(
+    *,
+    crystal: str = "KGd(WO4)2",
+    length_um: float = 20000.0,
+    wavelength_nm: float = 633.0,
+    optics: str = "wave",
+    beam: str = "gaussian",
+    waist_um: float = 40.0,
+    pinhole_um: float = 25.0,
+    filter_um: float = 50000.0,
+    polarization: Union[str, Sequence[float]] = "unpolarized",
+    z: float = 0.0,
+    rotate_deg: float = 0.0,
+    tilt_deg: float = 0.0,
+    screen_distance_um: float = 50000.0,
+    rays: int = 200000,
+    size_px: int = 1024,
+    progress: Progress = None,
+) -> Result: ...

@@ -1,0 +1,35 @@
+// The extension module that uses the image libraries (OpenImageIO, OpenCV): reading thin sections and
+// images, drawing the Michel-Lévy chart. It is kept apart from _petroscope so that `import petroscope` does
+// not load them; the package imports it on first use.
+#include "chart_arguments.hpp"
+#include "convert.hpp"
+
+#include "petroscope/io/chart_drawing.hpp"
+#include "petroscope/io/image_writer.hpp"
+#include "petroscope/io/thin_section_file.hpp"
+
+#include <pybind11/stl.h>
+
+PYBIND11_MODULE(_files, module) {
+    namespace py = pybind11;
+    py::module_::import("petroscope._petroscope");  // registers Section and the exception translations
+    module.def(
+        "read_section",
+        [](const std::string& path) { return petroscope::read_thin_section(path, petroscope::python::catalog()); }, py::arg("path"),
+        "The thin section of a folder or description file (thin_sections/README.md).");
+    module.def(
+        "read_image", [](const std::string& path) { return petroscope::python::to_numpy(petroscope::read_image(path)); }, py::arg("path"),
+        "An image file's values as float32 (height, width, channels): EXR and TIFF as stored, PNG and JPEG as codes / 255.");
+    module.def(
+        "michel_levy_chart",
+        [](const std::optional<std::string>& mineral, double max_retardation_nm, double step_nm, const py::object& light,
+           double max_thickness_um) {
+            if (!(max_thickness_um > 0.0)) throw py::value_error("max_thickness_um: expected a number > 0");
+            const petroscope::MichelLevyColours chart = petroscope::python::chart_colours(mineral, max_retardation_nm, step_nm, light);
+            petroscope::MichelLevyChartLayout layout;
+            layout.max_thickness_um = max_thickness_um;
+            return petroscope::python::to_numpy(petroscope::draw_michel_levy_chart(chart.steps, chart.linear_srgb, layout));
+        },
+        py::kw_only(), py::arg("mineral") = py::none(), py::arg("max_retardation_nm") = 2000.0, py::arg("step_nm") = 1.0,
+        py::arg("light") = py::none(), py::arg("max_thickness_um") = 50.0, "The drawn chart (petroscope.michel_levy_chart).");
+}

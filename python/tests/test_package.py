@@ -1,0 +1,44 @@
+"""The package: what `import petroscope` loads, its minerals against the command line, and help()."""
+import json
+import os
+import subprocess
+import sys
+
+import pytest
+
+import petroscope
+
+
+def test_import_loads_no_image_libraries():
+    # The image libraries (OpenImageIO, OpenCV and what they pull in: 260 shared libraries) load only when a
+    # file is read.
+    probe = ("import petroscope; maps = open('/proc/self/maps').read(); "
+             "print('OpenImageIO' in maps, 'opencv' in maps); petroscope.read_section; "
+             "import petroscope._files; maps = open('/proc/self/maps').read(); print('OpenImageIO' in maps)")
+    lines = subprocess.run([sys.executable, "-c", probe], check=True, capture_output=True, text=True, env=os.environ).stdout.split()
+    assert lines == ["False", "False", "True"]
+
+
+def test_minerals_agree_with_the_command_line():
+    names = petroscope.minerals()
+    assert "quartz" in names and "muscovite" in names
+    binary = os.environ.get("PETROSCOPE_BINARY")
+    if not binary:
+        pytest.skip("the command-line tool is not built")
+    shown = json.loads(subprocess.run([binary, "minerals", "show", "aragonite", "--wavelength", "589.3nm", "--json"], check=True,
+                                      capture_output=True, text=True).stdout)
+    aragonite = petroscope.mineral("aragonite")
+    assert aragonite.optical_class == "biaxial"
+    summary = aragonite.summary(589.3)
+    n = aragonite.principal_n(589.3)
+    assert sorted(n) == pytest.approx([summary["n_alpha"], summary["n_beta"], summary["n_gamma"]], abs=1e-15)
+    for key in ("n_alpha", "n_beta", "n_gamma", "birefringence", "two_v_deg", "sign"):
+        assert summary[key] == shown[key], key
+
+
+def test_every_public_function_explains_its_arguments():
+    for name in petroscope.__all__:
+        doc = getattr(petroscope, name).__doc__
+        assert doc and len(doc) > 40, name
+    assert "thickness_um" in petroscope.conoscope.__doc__
+    assert "ValueError" in petroscope.mineral.__doc__
