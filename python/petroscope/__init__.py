@@ -11,13 +11,17 @@ import os as _os
 from ._petroscope import (
     Cancelled,
     Grain,
+    InterfaceResult,
     Light,
+    Medium,
     Mineral,
     Result,
     Section,
+    Wave,
     conical,
     conoscope,
     indicatrix_axes,
+    interface,
     michel_levy_colours,
     mineral,
     minerals,
@@ -48,6 +52,24 @@ def michel_levy_chart(*, mineral=None, max_retardation_nm=2000.0, step_nm=1.0, l
     return _draw(mineral=mineral, max_retardation_nm=max_retardation_nm, step_nm=step_nm, light=light, max_thickness_um=max_thickness_um)
 
 
+def interface_case(path):
+    """Solves an interface case file (docs/interface.md) as `petroscope interface --case` does, and returns
+    its InterfaceResult. Reading JSON files is the files module's, loaded on first use."""
+    from ._files import interface_case as _solve
+
+    return _solve(_os.fspath(path))
+
+
+def verify(*, cases_dir=None, own_sweeps=True):
+    """The verification suite of the interface model, as `petroscope verify` runs it: the checks of every
+    case file in cases_dir (default: the repository's verification/cases) and, with own_sweeps, petroscope's
+    own sweeps (about a minute). Returns a list of dicts: name, statement, source, passed, checks (each a
+    dict: quantity, measured, expected, tolerance, passed)."""
+    from ._files import verify as _verify
+
+    return _verify(cases_dir=None if cases_dir is None else _os.fspath(cases_dir), own_sweeps=own_sweeps)
+
+
 def read_image(path):
     """An image file's values as a float32 array (height, width, channels): EXR and TIFF as stored (the
     command line's float output), PNG and JPEG as codes / 255 (a photo's camera values)."""
@@ -59,13 +81,18 @@ def read_image(path):
 __all__ = [
     "Cancelled",
     "Grain",
+    "InterfaceResult",
     "Light",
+    "Medium",
     "Mineral",
     "Result",
     "Section",
+    "Wave",
     "conical",
     "conoscope",
     "indicatrix_axes",
+    "interface",
+    "interface_case",
     "michel_levy_chart",
     "michel_levy_colours",
     "mineral",
@@ -73,4 +100,5 @@ __all__ = [
     "orthoscope",
     "read_image",
     "read_section",
+    "verify",
 ]

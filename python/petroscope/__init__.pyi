@@ -104,6 +104,45 @@ def michel_levy_chart(
     light: LightArgument = None,
     max_thickness_um: float = 50.0,
 ) -> npt.NDArray[np.float32]: ...
+class Medium:
+    def __init__(self, n: Union[complex, Sequence[complex]], *, euler_zyz_deg: Sequence[float] = (0.0, 0.0, 0.0)) -> None: ...
+    @staticmethod
+    def of_mineral(mineral: str, wavelength_nm: float, *, euler_zyz_deg: Sequence[float] = (0.0, 0.0, 0.0)) -> "Medium": ...
+    @property
+    def principal_n(self) -> npt.NDArray[np.complex128]: ...
+    @property
+    def axes(self) -> npt.NDArray[np.float64]: ...
+
+class Wave:
+    kind: str  # 'reflected' or 'transmitted'
+    mode: str  # 's+p', 'ordinary', 'extraordinary', 'fast', 'slow'
+    direction: npt.NDArray[np.float64]
+    ray_direction: npt.NDArray[np.float64]
+    n: complex
+    power: float
+    stokes: npt.NDArray[np.float64]
+    jones: Optional[npt.NDArray[np.complex128]]
+    amplitude: Optional[complex]
+    e_field: npt.NDArray[np.complex128]
+    d_direction: npt.NDArray[np.float64]
+    evanescent: bool
+
+class InterfaceResult:
+    waves: list[Wave]
+    incident_n: complex
+    incident_ray_direction: npt.NDArray[np.float64]
+
+def interface(
+    medium1: Medium,
+    medium2: Medium,
+    *,
+    direction: Sequence[float],
+    normal: Sequence[float] = (0.0, 0.0, 1.0),
+    polarization: Union[str, Sequence[complex], Sequence[float]] = "unpolarized",
+    mode: Optional[str] = None,
+) -> InterfaceResult: ...
+def interface_case(path: Union[str, os.PathLike[str]]) -> InterfaceResult: ...
+def verify(*, cases_dir: Union[str, os.PathLike[str], None] = None, own_sweeps: bool = True) -> list[dict[str, object]]: ...
 def read_section(path: Union[str, os.PathLike[str]]) -> Section: ...
 def read_image(path: Union[str, os.PathLike[str]]) -> npt.NDArray[np.float32]: ...
 def conoscope(

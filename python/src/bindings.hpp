@@ -11,5 +11,6 @@ void bind_conoscope(pybind11::module_& module);  // conoscope()
 void bind_orthoscope(pybind11::module_& module); // Grain, Section, orthoscope()
 void bind_conical(pybind11::module_& module);    // conical()
 void bind_chart(pybind11::module_& module);      // michel_levy_colours()
+void bind_interface(pybind11::module_& module);  // Medium, Wave, InterfaceResult, interface()
 
 }  // namespace petroscope::python

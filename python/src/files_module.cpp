@@ -5,13 +5,36 @@
 #include "convert.hpp"
 
 #include "petroscope/io/chart_drawing.hpp"
+#include "petroscope/io/data_files.hpp"
 #include "petroscope/io/image_writer.hpp"
+#include "petroscope/io/interface_case.hpp"
 #include "petroscope/io/thin_section_file.hpp"
+#include "petroscope/verification/interface_cases.hpp"
+#include "petroscope/verification/interface_suite.hpp"
 
 #include <pybind11/stl.h>
 
+namespace {
+
+namespace py = pybind11;
+
+py::list report_list(const petroscope::VerificationReport& report) {
+    py::list tests;
+    for (const petroscope::VerificationTest& test : report.tests) {
+        py::list checks;
+        for (const petroscope::VerificationCheck& check : test.checks) {
+            checks.append(py::dict(py::arg("quantity") = check.quantity, py::arg("measured") = check.measured,
+                                   py::arg("expected") = check.expected, py::arg("tolerance") = check.tolerance, py::arg("passed") = check.passed));
+        }
+        tests.append(py::dict(py::arg("name") = test.name, py::arg("statement") = test.statement, py::arg("source") = test.source,
+                              py::arg("passed") = test.passed(), py::arg("checks") = checks));
+    }
+    return tests;
+}
+
+}  // namespace
+
 PYBIND11_MODULE(_files, module) {
-    namespace py = pybind11;
     py::module_::import("petroscope._petroscope");  // registers Section and the exception translations
     module.def(
         "read_section",
@@ -20,6 +43,30 @@ PYBIND11_MODULE(_files, module) {
     module.def(
         "read_image", [](const std::string& path) { return petroscope::python::to_numpy(petroscope::read_image(path)); }, py::arg("path"),
         "An image file's values as float32 (height, width, channels): EXR and TIFF as stored, PNG and JPEG as codes / 255.");
+    module.def(
+        "interface_case",
+        [](const std::string& path) {
+            const petroscope::InterfaceCase interface_case = petroscope::load_interface_case(path, petroscope::python::catalog());
+            const py::gil_scoped_release released;
+            return petroscope::solve_interface(interface_case.normal, interface_case.incidence, interface_case.medium1, interface_case.medium2);
+        },
+        py::arg("path"), "Solves an interface case file (docs/interface.md), as `petroscope interface --case` does.");
+    module.def(
+        "verify",
+        [](const std::optional<std::string>& cases_dir, bool own_sweeps) {
+            const std::filesystem::path cases = cases_dir ? std::filesystem::path(*cases_dir)
+                                                          : petroscope::data_directory().parent_path() / "verification" / "cases";
+            petroscope::VerificationReport report;
+            {
+                const py::gil_scoped_release released;
+                report = petroscope::check_case_directory(cases, petroscope::python::catalog());
+                if (own_sweeps) {
+                    for (petroscope::VerificationTest& test : petroscope::run_interface_suite({})) report.tests.push_back(std::move(test));
+                }
+            }
+            return report_list(report);
+        },
+        py::kw_only(), py::arg("cases_dir") = py::none(), py::arg("own_sweeps") = true, "The verification suite (petroscope.verify).");
     module.def(
         "michel_levy_chart",
         [](const std::optional<std::string>& mineral, double max_retardation_nm, double step_nm, const py::object& light,

@@ -1,0 +1,83 @@
+"""The interface solver from Python: every verification case gives the waves `petroscope interface --case`
+gives, and the closed forms hold (Fresnel at normal incidence, Brewster's angle, total reflection)."""
+import json
+import math
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import petroscope
+
+
+def cli_waves(binary, case):
+    return json.loads(subprocess.run([binary, "interface", "--case", str(case), "--json"], check=True, capture_output=True, text=True).stdout)
+
+
+def test_every_verification_case_gives_the_command_lines_waves(repository):
+    binary = os.environ.get("PETROSCOPE_BINARY")
+    if not binary:
+        pytest.skip("the command-line tool is not built")
+    cases = sorted((repository / "verification" / "cases").glob("*.json"))
+    assert len(cases) > 40
+    for case in cases:
+        result = petroscope.interface_case(case)
+        expected = cli_waves(binary, case)
+        assert len(result.waves) == len(expected["waves"]), case.name
+        for wave, reference in zip(result.waves, expected["waves"]):
+            assert (wave.kind, wave.mode, wave.evanescent) == (reference["kind"], reference["mode"], reference["evanescent"]), case.name
+            n = reference["n"] if isinstance(reference["n"], float) else complex(*reference["n"])
+            assert wave.n == n, case.name
+            assert wave.power == reference["power"], case.name
+            np.testing.assert_array_equal(wave.direction, reference["direction"])
+            np.testing.assert_array_equal(wave.ray_direction, reference["ray_direction"])
+            np.testing.assert_array_equal(wave.stokes, reference["stokes"])
+
+
+def test_fresnel_and_brewster_hold():
+    air, glass = petroscope.Medium(1.0), petroscope.Medium(1.5)
+    normal = petroscope.interface(air, glass, direction=(0, 0, 1), polarization="s")
+    reflected = [w for w in normal.waves if w.kind == "reflected"][0]
+    assert reflected.power == pytest.approx(((1.5 - 1) / (1.5 + 1)) ** 2, abs=1e-15)  # R = ((n − 1)/(n + 1))²
+    assert sum(w.power for w in normal.waves) == pytest.approx(1.0, abs=1e-14)
+    brewster = math.atan(1.5)  # tan θ_B = n₂/n₁
+    direction = (math.sin(brewster), 0.0, math.cos(brewster))
+    p_wave = petroscope.interface(air, glass, direction=direction, polarization="p")
+    assert [w.power for w in p_wave.waves if w.kind == "reflected"][0] < 1e-28
+    # Beyond the critical angle from glass into air everything is reflected; the transmitted wave is evanescent.
+    steep = math.radians(60.0)
+    total = petroscope.interface(glass, air, direction=(math.sin(steep), 0.0, math.cos(steep)))
+    assert [w.power for w in total.waves if w.kind == "reflected"][0] == pytest.approx(1.0, abs=1e-14)
+    assert all(w.evanescent for w in total.waves if w.kind == "transmitted")
+
+
+def test_calcite_splits_normal_light_into_ordinary_and_extraordinary():
+    calcite = petroscope.Medium.of_mineral("calcite", 589.3, euler_zyz_deg=(0, 45, 0))  # optic axis 45° from the normal
+    result = petroscope.interface(petroscope.Medium(1.0), calcite, direction=(0, 0, 1))
+    transmitted = {w.mode: w for w in result.waves if w.kind == "transmitted"}
+    assert set(transmitted) == {"ordinary", "extraordinary"}
+    n_o, _, n_e = petroscope.mineral("calcite").principal_n(589.3)
+    assert transmitted["ordinary"].n.real == pytest.approx(n_o, abs=1e-12)
+    # The extraordinary ray walks off the wave normal (its direction stays the normal's at normal incidence).
+    assert transmitted["extraordinary"].ray_direction[0] != pytest.approx(0.0, abs=1e-3)
+
+
+def test_bad_interface_input():
+    air, glass = petroscope.Medium(1.0), petroscope.Medium(1.5)
+    with pytest.raises(ValueError, match="toward medium 2|direction"):
+        petroscope.interface(air, glass, direction=(0, 0, -1))
+    with pytest.raises(ValueError, match="polarization"):
+        petroscope.interface(air, glass, direction=(0, 0, 1), polarization="sideways")
+    with pytest.raises(ValueError, match="mode"):
+        petroscope.interface(petroscope.Medium.of_mineral("calcite", 589.3), air, direction=(0, 0, 1), mode="s+p")
+    with pytest.raises(ValueError, match="refractive indices"):
+        petroscope.interface(air, petroscope.Medium(-1.0), direction=(0, 0, 1))
+
+
+def test_the_verification_cases_pass():
+    tests = petroscope.verify(own_sweeps=False)
+    assert len(tests) > 40
+    failed = [t["name"] for t in tests if not t["passed"]]
+    assert failed == []
+    assert all(check["passed"] for t in tests for check in t["checks"])
