@@ -116,7 +116,7 @@ void bind_interface(py::module_& module) {
         .def_readonly("incident_ray_direction", &InterfaceResult::incident_ray_direction);
 
     module.def("interface", &interface, py::arg("medium1"), py::arg("medium2"), py::kw_only(), py::arg("direction"),
-               py::arg("normal") = Eigen::Vector3d(0.0, 0.0, 1.0), py::arg("polarization") = "unpolarized", py::arg("mode") = py::none(),
+               py::arg("normal") = py::make_tuple(0.0, 0.0, 1.0), py::arg("polarization") = "unpolarized", py::arg("mode") = py::none(),
                R"(One plane wave going from medium1 into medium2 across a plane interface: every reflected and
 transmitted wave, solved exactly (the local interface model, docs/interface.md).
 
