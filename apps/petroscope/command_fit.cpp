@@ -51,15 +51,6 @@ struct FitOptions {
     LightOptions light;
 };
 
-PhotoParameter parameter_named(const std::string& option, const std::string& name) {
-    for (int j = 0; j < kPhotoParameterCount; ++j) {
-        if (photo_parameter_name(static_cast<PhotoParameter>(j)) == name) return static_cast<PhotoParameter>(j);
-    }
-    std::string names;
-    for (int j = 0; j < kPhotoParameterCount; ++j) names += (j ? ", " : "") + std::string(photo_parameter_name(static_cast<PhotoParameter>(j)));
-    throw InputError(option + " " + quote_input(name) + ": unknown parameter (expected one of " + names + ")");
-}
-
 /// What the report says about the photo's encoding: none (PNG, TIFF), or the JPEG's and whether the
 /// fit checked its systematic error.
 nlohmann::json encoding_json(const std::optional<JpegEncoding>& jpeg, bool checked) {
@@ -147,14 +138,11 @@ void run_fit_conoscope(const FitOptions& options, const std::string& minerals_di
     at(fit.initial, PhotoParameter::tilt_deg) = options.tilt_deg;
     at(fit.initial, PhotoParameter::azimuth_deg) = options.azimuth_deg;
     fit.candidates = options.candidates;
-    if (!options.thickness.empty()) {
-        const double start = positive_length_um("--thickness", options.thickness);
-        at(fit.initial, PhotoParameter::thickness_um) = start;
-        fit.thickness_min_um = start / 3.0;
-        fit.thickness_max_um = start * 3.0;
-    }
-    if (!options.thickness_range.empty()) std::tie(fit.thickness_min_um, fit.thickness_max_um) = length_range_um("--thickness-range", options.thickness_range);
-    if (options.thickness.empty()) at(fit.initial, PhotoParameter::thickness_um) = std::sqrt(fit.thickness_min_um * fit.thickness_max_um);
+    std::optional<double> start_um;
+    std::optional<std::pair<double, double>> range_um;
+    if (!options.thickness.empty()) start_um = positive_length_um("--thickness", options.thickness);
+    if (!options.thickness_range.empty()) range_um = length_range_um("--thickness-range", options.thickness_range);
+    set_thickness_search(fit, start_um, range_um);
     fit.free.fill(false);
     for (const std::string& group : split(options.free, ',')) {
         const auto found = free_groups().find(group);
@@ -169,7 +157,7 @@ void run_fit_conoscope(const FitOptions& options, const std::string& minerals_di
         const auto parts = split(assignment, '=');
         const auto value = parts.size() == 2 ? parse_double(parts[1]) : std::nullopt;
         if (!value) throw InputError("--fix " + quote_input(assignment) + ": expected NAME=VALUE, e.g. field_radius_px=250 or gamma=2.2");
-        const PhotoParameter p = parameter_named("--fix", parts[0]);
+        const PhotoParameter p = with_option("--fix", [&] { return parse_photo_parameter(parts[0]); });
         fit.initial[static_cast<std::size_t>(p)] = *value;
         fit.free[static_cast<std::size_t>(p)] = false;
     }

@@ -167,6 +167,28 @@ def conoscope(
     wedge_position: float = 0.5,
     progress: Progress = None,
 ) -> Result: ...
+def fit_conoscope(
+    photo: npt.NDArray[np.floating],
+    *,
+    mineral: str = "muscovite",
+    cut: Optional[str] = None,
+    light: LightArgument = None,
+    numerical_aperture: float = 0.85,
+    polarizer_deg: float = 0.0,
+    analyzer_deg: float = 90.0,
+    surround_n: float = 1.54,
+    thickness_um: Optional[float] = None,
+    thickness_range_um: Optional[Tuple[float, float]] = None,
+    tilt_deg: float = 0.0,
+    azimuth_deg: float = 0.0,
+    free: Sequence[str] = (
+        "thickness_um", "center_x_px", "center_y_px", "field_radius_px", "rotation_deg",
+        "gain_r", "gain_g", "gain_b", "black_level", "gamma", "blur_variance_px2",
+    ),
+    fixed: dict[str, float] = {},
+    candidates: int = 3,
+    progress: Progress = None,
+) -> dict[str, object]: ...
 def orthoscope(
     section: Section,
     *,

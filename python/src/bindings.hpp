@@ -12,5 +12,6 @@ void bind_orthoscope(pybind11::module_& module); // Grain, Section, orthoscope()
 void bind_conical(pybind11::module_& module);    // conical()
 void bind_chart(pybind11::module_& module);      // michel_levy_colours()
 void bind_interface(pybind11::module_& module);  // Medium, Wave, InterfaceResult, interface()
+void bind_fit(pybind11::module_& module);        // fit_conoscope()
 
 }  // namespace petroscope::python

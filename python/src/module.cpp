@@ -13,4 +13,5 @@ PYBIND11_MODULE(_petroscope, module) {
     petroscope::python::bind_conical(module);
     petroscope::python::bind_chart(module);
     petroscope::python::bind_interface(module);
+    petroscope::python::bind_fit(module);
 }

@@ -1,6 +1,10 @@
 #include "petroscope/api/conoscope_photo_model.hpp"
 
 #include "petroscope/api/crystal_orientation.hpp"
+#include "petroscope/core/error.hpp"
+
+#include <cmath>
+#include <tuple>
 
 namespace petroscope {
 
@@ -22,6 +26,19 @@ ConoscopePhotoModel conoscope_photo_model(const Mineral& mineral, const Conoscop
     };
     model.rgb_per_transmission = rgb_per_transmission(setup.light);
     return model;
+}
+
+void set_thickness_search(ConoscopeFitOptions& options, std::optional<double> start_um, std::optional<std::pair<double, double>> range_um) {
+    if (start_um && !(*start_um > 0.0 && std::isfinite(*start_um))) throw InputError("the starting thickness must be a positive length");
+    if (range_um && !(range_um->first > 0.0 && range_um->second > range_um->first && std::isfinite(range_um->second))) {
+        throw InputError("the thickness range must be MIN < MAX, both positive");
+    }
+    if (start_um) {
+        options.thickness_min_um = *start_um / 3.0;
+        options.thickness_max_um = *start_um * 3.0;
+    }
+    if (range_um) std::tie(options.thickness_min_um, options.thickness_max_um) = *range_um;
+    at(options.initial, PhotoParameter::thickness_um) = start_um.value_or(std::sqrt(options.thickness_min_um * options.thickness_max_um));
 }
 
 }  // namespace petroscope

@@ -430,6 +430,14 @@ Image render_photo_on_lattices(const ConoscopePhotoModel& model, const PhotoPara
 
 std::string_view photo_parameter_name(PhotoParameter parameter) { return kNames[index_of(parameter)]; }
 
+PhotoParameter parse_photo_parameter(std::string_view name) {
+    const auto found = std::find(kNames.begin(), kNames.end(), name);
+    if (found != kNames.end()) return static_cast<PhotoParameter>(found - kNames.begin());
+    std::string names;
+    for (const std::string_view known : kNames) names += (names.empty() ? "" : ", ") + std::string(known);
+    throw InputError("unknown parameter " + quote_input(name) + " (expected one of " + names + ")");
+}
+
 PhotoParameters default_photo_parameters(int width_px, int height_px) {
     PhotoParameters values{};
     at(values, PhotoParameter::thickness_um) = 30.0;

@@ -7,6 +7,7 @@
 #include "petroscope/optics/orientation.hpp"
 
 #include <optional>
+#include <utility>
 
 namespace petroscope {
 
@@ -22,5 +23,10 @@ struct ConoscopePhotoSetup {
 /// The model of photos of `mineral` (which must outlive it); its orientation is the cut tilted and turned
 /// (cut_orientation), its colours the light's display colours. Throws InputError for a bad setting.
 ConoscopePhotoModel conoscope_photo_model(const Mineral& mineral, const ConoscopePhotoSetup& setup);
+
+/// Where the fit searches the thickness: around a starting thickness (÷3 … ×3), over a range MIN … MAX
+/// (starting at its geometric mean), or a range with a start; with neither, the options' own range.
+/// Throws InputError for a non-positive start or an empty range.
+void set_thickness_search(ConoscopeFitOptions& options, std::optional<double> start_um, std::optional<std::pair<double, double>> range_um);
 
 }  // namespace petroscope

@@ -44,6 +44,8 @@ inline double at(const PhotoParameters& values, PhotoParameter p) { return value
 
 /// "thickness_um", "center_x_px", …
 std::string_view photo_parameter_name(PhotoParameter parameter);
+/// The inverse; throws InputError listing the names.
+PhotoParameter parse_photo_parameter(std::string_view name);
 
 /// Everything about the figure that is not fitted.
 struct ConoscopePhotoModel {
