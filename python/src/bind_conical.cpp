@@ -30,9 +30,7 @@ Result conical(const std::string& crystal, double length_um, double wavelength_n
                                  .pinhole_um = pinhole_um, .filter_um = filter_um, .stokes = stokes_argument(polarization), .z = z,
                                  .rotate_deg = rotate_deg, .tilt_deg = tilt_deg, .screen_distance_um = screen_distance_um, .rays = rays,
                                  .size_px = size_px};
-    PythonProgress reporter(progress);
-    const ProgressCallback callback = reporter.callback();
-    const auto [plan, screen] = without_gil([&] {
+    const auto [plan, screen] = with_progress(progress, [&](const ProgressCallback& callback) {
         ConicalPlan planned = plan_conical(request, catalog());
         ConicalScreen rendered = render_conical_screen(planned, callback);
         return std::pair{std::move(planned), std::move(rendered)};

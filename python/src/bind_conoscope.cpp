@@ -20,9 +20,7 @@ Result conoscope(const std::string& mineral, double thickness_um, const std::opt
                                    .stage_deg = stage_deg, .polarizer_deg = polarizer_deg, .analyzer_deg = analyzer_deg,
                                    .analyzer_in = analyzer_in, .surround_n = surround_n, .mounting = parse_slab_mounting(mounting),
                                    .plate = plate_argument(plate, plate_slow_deg, wedge_position)};
-    PythonProgress reporter(progress);
-    const ProgressCallback callback = reporter.callback();
-    const auto [plan, figure] = without_gil([&] {
+    const auto [plan, figure] = with_progress(progress, [&](const ProgressCallback& callback) {
         ConoscopePlan planned = plan_conoscope(request, catalog());
         ConoscopeFigure rendered = render_conoscope_figure(planned, callback);
         return std::pair{std::move(planned), std::move(rendered)};

@@ -74,9 +74,7 @@ py::dict fit_conoscope(const py::array& photo_array, const std::string& mineral,
         options.initial[p] = value;
         options.free[p] = false;
     }
-    PythonProgress reporter(progress);
-    const ProgressCallback callback = reporter.callback();
-    auto [result, model_photo] = without_gil([&] {
+    auto [result, model_photo] = with_progress(progress, [&](const ProgressCallback& callback) {
         const ConoscopePhotoModel model = conoscope_photo_model(catalog().find(mineral), setup);
         ConoscopeFitResult fitted = fit_conoscope_photo(photo, model, options, callback);
         Image rendered = render_conoscope_photo(model, fitted.values, photo.width, photo.height);

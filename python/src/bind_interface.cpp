@@ -2,6 +2,7 @@
 #include "bindings.hpp"
 #include "convert.hpp"
 
+#include "petroscope/core/text.hpp"
 #include "petroscope/optics/interface.hpp"
 #include "petroscope/optics/orientation.hpp"
 
@@ -29,7 +30,7 @@ void set_polarization(const py::object& polarization, InterfaceIncidence& incide
     if (py::isinstance<py::str>(polarization)) {
         const std::string text = polarization.cast<std::string>();
         if (text == "unpolarized") return;  // the default coherency, I/2
-        if (text != "s" && text != "p") throw py::value_error("polarization: expected 'unpolarized', 's', 'p', (E_s, E_p) or (S0, S1, S2, S3), not '" + text + "'");
+        if (text != "s" && text != "p") throw py::value_error("polarization: expected 'unpolarized', 's', 'p', (E_s, E_p) or (S0, S1, S2, S3), not " + quote_input(text));
         incidence.jones = text == "s" ? JonesVector(1.0, 0.0) : JonesVector(0.0, 1.0);
     } else if (py::len(polarization) == 2) {
         const auto jones = polarization.cast<std::array<complex, 2>>();
@@ -37,10 +38,9 @@ void set_polarization(const py::object& polarization, InterfaceIncidence& incide
         if (incidence.jones->norm() == 0.0 || !incidence.jones->allFinite()) throw py::value_error("polarization: expected a non-zero finite Jones vector");
     } else if (py::len(polarization) == 4) {
         const auto s = polarization.cast<std::array<double, 4>>();
-        if (!(s[0] > 0.0) || s[1] * s[1] + s[2] * s[2] + s[3] * s[3] > s[0] * s[0] * (1.0 + 1e-12)) {
-            throw py::value_error("polarization: a Stokes vector needs S0 > 0 and S1² + S2² + S3² <= S0²");
-        }
-        incidence.coherency = coherency_from_stokes({s[0], s[1], s[2], s[3]});
+        const Eigen::Vector4d stokes(s[0], s[1], s[2], s[3]);
+        if (!is_physical_stokes(stokes)) throw py::value_error("polarization: a Stokes vector needs S0 > 0 and S1² + S2² + S3² <= S0²");
+        incidence.coherency = coherency_from_stokes(stokes);
         return;
     } else {
         throw py::type_error("polarization: expected 'unpolarized', 's', 'p', a Jones vector (E_s, E_p) or a Stokes vector (S0, S1, S2, S3)");
@@ -55,7 +55,7 @@ InterfaceResult interface(const OpticalMedium& medium1, const OpticalMedium& med
     if (mode) {
         incidence.mode = parse_wave_mode(*mode);
         if (!incidence.mode || *incidence.mode == InterfaceMode::isotropic) {
-            throw py::value_error("mode: expected 'fast', 'slow', 'ordinary' or 'extraordinary', not '" + *mode + "'");
+            throw py::value_error("mode: expected 'fast', 'slow', 'ordinary' or 'extraordinary', not " + quote_input(*mode));
         }
     }
     set_polarization(polarization, incidence);

@@ -59,9 +59,7 @@ Result orthoscope(const ThinSection& section, bool analyzer_in, double stage_deg
                               .condenser_na = condenser_na, .condenser_rings = condenser_rings, .thickness_um = thickness_um,
                               .exact = exact, .light = light_argument(light)};
     const bool monochromatic = request.light.monochromatic();
-    PythonProgress reporter(progress);
-    const ProgressCallback callback = reporter.callback();
-    const auto [notes, image] = without_gil([&] {
+    const auto [notes, image] = with_progress(progress, [&](const ProgressCallback& callback) {
         const OrthoscopePlan plan = plan_orthoscope(std::move(request), catalog());
         return std::pair{plan.notes, render_orthoscope_image(plan, callback)};
     });

@@ -72,6 +72,15 @@ private:
     py::object callback_;
 };
 
+/// Runs `work(callback)` with the GIL released, `callback` reporting to the Python `progress` (None for
+/// none) as PythonProgress does.
+template <class Work>
+auto with_progress(const py::object& progress, Work&& work) {
+    PythonProgress reporter(progress);
+    const ProgressCallback callback = reporter.callback();
+    return without_gil([&] { return work(callback); });
+}
+
 /// Python's KeyboardInterrupt, ValueError (bad input) and petroscope.Cancelled for the library's errors.
 void register_exceptions(py::module_& module);
 

@@ -3,6 +3,7 @@
 #include "petroscope/core/error.hpp"
 #include "petroscope/core/text.hpp"
 #include "petroscope/microscope/frame_measurements.hpp"
+#include "petroscope/optics/polarization.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -48,9 +49,7 @@ ConicalPlan plan_conical(const ConicalRequest& request, const MineralCatalog& ca
     if (!(request.wavelength_nm > 0.0) || !std::isfinite(request.wavelength_nm)) throw InputError("the wavelength must be a positive finite number of nm");
     if (request.size_px < 64 || request.size_px > 4096) throw InputError("image size " + std::to_string(request.size_px) + " px is out of range (expected 64 to 4096)");
     if (!std::isfinite(request.z)) throw InputError("Z must be a finite number");
-    if (!request.stokes.allFinite() || !(request.stokes[0] > 0.0) || request.stokes.tail<3>().norm() > request.stokes[0] * (1.0 + 1e-12)) {
-        throw InputError("the Stokes vector must have S0 > 0 and S1² + S2² + S3² ≤ S0²");
-    }
+    if (!is_physical_stokes(request.stokes)) throw InputError("the Stokes vector must have S0 > 0 and S1² + S2² + S3² ≤ S0²");
     const Mineral& crystal = catalog.find(request.crystal);
     if (crystal.optical_class != OpticalClass::biaxial) {
         throw InputError(crystal.name + " is " + std::string(optical_class_name(crystal.optical_class)) +

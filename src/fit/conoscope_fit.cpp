@@ -133,7 +133,6 @@ std::unique_ptr<ceres::Problem> make_problem(const PhotoLevel& level, PhotoParam
     return problem;
 }
 
-/// Least squares on one level from `values`; returns the final Ceres cost and adds the iterations.
 /// Lets the progress callback cancel a solve between its iterations.
 class CancelBetweenIterations final : public ceres::IterationCallback {
 public:
@@ -147,7 +146,8 @@ private:
     ProgressRelay& relay_;
 };
 
-/// Solves on `level` from `values`; throws Cancelled when the progress callback asks to stop.
+/// Least squares on one level from `values`; returns the final Ceres cost and adds the iterations. Throws
+/// Cancelled when the progress callback asks to stop.
 double solve_level(const PhotoLevel& level, PhotoParameters& values, const ConoscopeFitOptions& options, const Bounds& bounds,
                    int max_iterations, double function_tolerance, int& iterations, ProgressRelay& relay) {
     const std::unique_ptr<ceres::Problem> problem = make_problem(level, values, options, bounds);

@@ -103,10 +103,9 @@ void parse_polarization(const JsonValue& value, bool anisotropic_medium, Interfa
         incidence.jones = JonesVector(root_half, complex(0.0, hand == "right" ? root_half : -root_half));
     } else if (value.has("stokes")) {
         const std::vector<double> s = value["stokes"].numbers(4);
-        if (!(s[0] > 0.0) || s[1] * s[1] + s[2] * s[2] + s[3] * s[3] > s[0] * s[0] * (1.0 + 1e-12)) {
-            throw value["stokes"].error("expected S0 > 0 and S1² + S2² + S3² <= S0²");
-        }
-        incidence.coherency = coherency_from_stokes({s[0], s[1], s[2], s[3]});
+        const Eigen::Vector4d stokes(s[0], s[1], s[2], s[3]);
+        if (!is_physical_stokes(stokes)) throw value["stokes"].error("expected S0 > 0 and S1² + S2² + S3² <= S0²");
+        incidence.coherency = coherency_from_stokes(stokes);
         return;
     } else {
         throw value.error("expected a polarization: \"unpolarized\", \"s\", \"p\", {\"linear_deg\": a}, {\"jones_sp\": …}, {\"stokes\": …} or {\"circular\": …}");

@@ -235,8 +235,7 @@ ConicalRayResult trace_conical_rays(const ConicalRaySettings& settings, const Pr
             landings.insert(landings.end(), local_landings.begin(), local_landings.end());
         }
     }
-    relay.stop_if_cancelled();
-    relay.report(1.0);
+    relay.finish();
     result.rings = measure_rings(landings, result.ring_radius_um);
     result.max_interface_power_sum = max_sum;
     result.non_finite = non_finite;

@@ -146,8 +146,7 @@ Image render_conoscope(const ConoscopeSettings& settings, const PrincipalIndexFu
             relay.count_done(rows_done, paired_rows);
         }
     }
-    relay.stop_if_cancelled();
-    relay.report(1.0);
+    relay.finish();
     return image;
 }
 

@@ -46,8 +46,7 @@ Image render_conoscope_through_stack(const ConoscopeSettings& settings, const Pr
             relay.count_done(rows_done, size);
         }
     }
-    relay.stop_if_cancelled();
-    relay.report(1.0);
+    relay.finish();
     return image;
 }
 

@@ -18,4 +18,8 @@ CoherencyMatrix coherency_from_stokes(const Eigen::Vector4d& s) {
 
 CoherencyMatrix coherency_from_jones(const JonesVector& jones) { return jones * jones.adjoint(); }
 
+bool is_physical_stokes(const Eigen::Vector4d& stokes) {
+    return stokes.allFinite() && stokes[0] > 0.0 && stokes.tail<3>().squaredNorm() <= stokes[0] * stokes[0] * (1.0 + 1e-12);
+}
+
 }  // namespace petroscope

@@ -8,7 +8,6 @@
 
 #include <Eigen/Geometry>
 
-
 #include <atomic>
 #include <exception>
 #include <chrono>
@@ -460,8 +459,7 @@ RenderResult render_scene(const Scene& scene, const RenderSpectrum& spectrum, co
         }
     }
     if (failure) std::rethrow_exception(failure);
-    relay.stop_if_cancelled();
-    relay.report(1.0);
+    relay.finish();
     totals.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     result.statistics = totals;
     return result;

@@ -34,6 +34,11 @@ public:
     bool cancelled() const { return cancelled_.load(std::memory_order_relaxed); }
     /// Throws what the callback threw, or Cancelled when it asked to stop.
     void stop_if_cancelled() const;
+    /// After the parallel part: stop_if_cancelled(), then the report that all is done.
+    void finish() {
+        stop_if_cancelled();
+        report(1.0);
+    }
 
 private:
     ProgressCallback callback_;

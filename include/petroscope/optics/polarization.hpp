@@ -19,4 +19,7 @@ Eigen::Vector4d stokes_from_coherency(const CoherencyMatrix& coherency);
 CoherencyMatrix coherency_from_stokes(const Eigen::Vector4d& stokes);
 CoherencyMatrix coherency_from_jones(const JonesVector& jones);
 
+/// A Stokes vector of real light: finite, S0 > 0 and S1² + S2² + S3² ≤ S0² (to rounding, 1e-12 relative).
+bool is_physical_stokes(const Eigen::Vector4d& stokes);
+
 }  // namespace petroscope
