@@ -4,17 +4,14 @@
 #include "cli_common.hpp"
 #include "frame_command.hpp"
 
+#include "petroscope/api/sweep.hpp"
 #include "petroscope/core/error.hpp"
 #include "petroscope/core/text.hpp"
 #include "petroscope/io/json_sidecar.hpp"
 #include "petroscope/io/sweep_directory.hpp"
 
-#include <omp.h>
-
 #include <algorithm>
-#include <atomic>
 #include <chrono>
-#include <exception>
 #include <iostream>
 #include <memory>
 #include <set>
@@ -198,46 +195,31 @@ void run_sweep(const SweepOptions& sweep, const RenderOptionSet& options, const 
     if (already > 0) std::cerr << ", " << already << " already there";
     std::cerr << '\n';
 
-    // Frames in parallel, each on one thread: a frame's pixels then never depend on how the work was split
-    // (shards, resumed runs, --jobs), so the same frame is the same file every time.
-    const int jobs = sweep.jobs > 0 ? sweep.jobs : omp_get_max_threads();
-    std::atomic<std::size_t> done{0};
-    std::atomic<bool> failed{false};
-    std::exception_ptr first_error;
+    // Frames in parallel, each on one thread (run_sweep_frames): the same frame is the same file every time.
     const std::string label = "sweep " + std::to_string(todo.size()) + " frames";
     if (!todo.empty()) show_progress(label, 0.0);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(jobs)
-    for (std::size_t k = 0; k < todo.size(); ++k) {
-        if (failed) continue;
-        omp_set_num_threads(1);
-        try {
-            const std::size_t frame = todo[k];
-            // Prepared again rather than kept from the check above: a prepared orthoscope frame holds its own
-            // copy of the section, too much to keep for thousands of frames. (The context is not thread-safe.)
-            PreparedFrame prepared;
+    const auto render_frame = [&](std::size_t frame, const ProgressCallback& frame_progress) {
+        // Prepared again rather than kept from the check above: a prepared orthoscope frame holds its own
+        // copy of the section, too much to keep for thousands of frames. (The context is not thread-safe.)
+        PreparedFrame prepared;
 #pragma omp critical(petroscope_sweep_context)
-            prepared = prepare_frame(make, plan, frame, context);
-            const std::filesystem::path path = directory.frame_path(frame);
-            ImageResult result(path);
-            RenderedFrame rendered = prepared.render({});
-            std::string command_line = "petroscope " + plan.command;
-            for (const std::string& argument : plan.frame_arguments(frame)) command_line += " " + shell_quoted(argument);
-            rendered.sidecar["command_line"] = command_line + " -o " + shell_quoted(path.filename().string());
-            const std::vector<std::string> values = plan.values_of(frame);
-            nlohmann::json swept = nlohmann::json::object();
-            for (std::size_t p = 0; p < plan.parameters.size(); ++p) swept[plan.parameters[p].name] = values[p];
-            rendered.sidecar["sweep"] = {{"frame", frame}, {"frames", frames}, {"values", swept}};
-            result.write(rendered.linear_rgb, rendered.sidecar);
-            const std::size_t finished = ++done;
-#pragma omp critical(petroscope_sweep_progress)
-            show_progress(label, static_cast<double>(finished) / static_cast<double>(todo.size()));
-        } catch (...) {
-#pragma omp critical(petroscope_sweep_error)
-            if (!first_error) first_error = std::current_exception();
-            failed = true;
-        }
-    }
-    if (first_error) std::rethrow_exception(first_error);
+        prepared = prepare_frame(make, plan, frame, context);
+        const std::filesystem::path path = directory.frame_path(frame);
+        ImageResult result(path);
+        RenderedFrame rendered = prepared.render(frame_progress);
+        std::string command_line = "petroscope " + plan.command;
+        for (const std::string& argument : plan.frame_arguments(frame)) command_line += " " + shell_quoted(argument);
+        rendered.sidecar["command_line"] = command_line + " -o " + shell_quoted(path.filename().string());
+        const std::vector<std::string> values = plan.values_of(frame);
+        nlohmann::json swept = nlohmann::json::object();
+        for (std::size_t p = 0; p < plan.parameters.size(); ++p) swept[plan.parameters[p].name] = values[p];
+        rendered.sidecar["sweep"] = {{"frame", frame}, {"frames", frames}, {"values", swept}};
+        result.write(rendered.linear_rgb, rendered.sidecar);
+    };
+    run_sweep_frames(todo, sweep.jobs, render_frame, [&](double fraction_done) {
+        show_progress(label, fraction_done);
+        return true;
+    });
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     std::cerr << "petroscope: rendered " << todo.size() << " frame" << (todo.size() == 1 ? "" : "s") << " into "
               << (std::filesystem::path(sweep.output) / "frames").string() << " (" << seconds << " s)\n";

@@ -8,6 +8,8 @@ computations release the GIL, so several threads can compute at once. Guide: doc
 """
 import os as _os
 
+from . import _petroscope
+
 from ._petroscope import (
     Cancelled,
     Grain,
@@ -71,6 +73,48 @@ def verify(*, cases_dir=None, own_sweeps=True):
     return _verify(cases_dir=None if cases_dir is None else _os.fspath(cases_dir), own_sweeps=own_sweeps)
 
 
+def sweep(compute, vary, *, frames=None, jobs=0, progress=None, **arguments):
+    """The frames of conoscope, orthoscope or conical over a grid of their numeric arguments, rendered in
+    parallel (each frame on one thread, so a frame never depends on how the work was split).
+
+    compute: petroscope.conoscope, petroscope.orthoscope or petroscope.conical (or its name).
+    vary: {field: values}, e.g. {'tilt_deg': range(0, 40, 10), 'azimuth_deg': [0, 45, 90]}; the last field
+      runs fastest. Fields: those of the function with their units; petroscope.sweep_fields(compute) lists them.
+    frames: frame numbers of the grid to render (None: all); petroscope.shards splits them into parts for
+      other processes or machines (docs/scaling.md), and Sweep.merge joins the parts.
+    jobs: frames at once (0: one per core). progress: called with the fraction of frames done; return False
+      to cancel. arguments: the function's other arguments, the same for every frame.
+
+    Returns a Sweep: results (a Result per frame), images, grid(), measurement(name), values(frame).
+    """
+    from ._sweep import run
+
+    return run(compute, vary, frames, jobs, progress, arguments)
+
+
+def sweep_fields(compute):
+    """The numeric arguments of conoscope, orthoscope or conical (or its name) that sweep can vary."""
+    from ._sweep import _kind
+
+    return _petroscope._sweep_fields(_kind(compute))
+
+
+def shards(frame_count, count):
+    """The frames 0 … frame_count−1 in `count` contiguous parts (as the command line's --shard K/N)."""
+    from ._sweep import shards as _shards
+
+    return _shards(frame_count, count)
+
+
+def __getattr__(name):
+    # Sweep needs numpy, which `import petroscope` does not load: it comes with its first use.
+    if name == "Sweep":
+        from ._sweep import Sweep
+
+        return Sweep
+    raise AttributeError("module 'petroscope' has no attribute " + repr(name))
+
+
 def read_image(path):
     """An image file's values as a float32 array (height, width, channels): EXR and TIFF as stored (the
     command line's float output), PNG and JPEG as codes / 255 (a photo's camera values)."""
@@ -88,6 +132,7 @@ __all__ = [
     "Mineral",
     "Result",
     "Section",
+    "Sweep",
     "Wave",
     "conical",
     "conoscope",
@@ -102,5 +147,8 @@ __all__ = [
     "orthoscope",
     "read_image",
     "read_section",
+    "shards",
+    "sweep",
+    "sweep_fields",
     "verify",
 ]

@@ -1,13 +1,12 @@
 // conical(): internal conical refraction on a screen, in wave or ray optics.
 #include "bindings.hpp"
-#include "convert.hpp"
-
-#include "petroscope/api/conical_screen.hpp"
+#include "computations.hpp"
 
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
 #include <numbers>
+#include <tuple>
 
 namespace petroscope::python {
 namespace {
@@ -22,22 +21,39 @@ Eigen::Vector4d stokes_argument(const py::object& polarization) {
     }
 }
 
-Result conical(const std::string& crystal, double length_um, double wavelength_nm, const std::string& optics, const std::string& beam,
-               double waist_um, double pinhole_um, double filter_um, const py::object& polarization, double z, double rotate_deg,
-               double tilt_deg, double screen_distance_um, std::int64_t rays, int size_px, const py::object& progress) {
-    const ConicalRequest request{.crystal = crystal, .length_um = length_um, .wavelength_nm = wavelength_nm,
-                                 .optics = parse_conical_optics(optics), .beam = parse_conical_beam(beam), .waist_um = waist_um,
-                                 .pinhole_um = pinhole_um, .filter_um = filter_um, .stokes = stokes_argument(polarization), .z = z,
-                                 .rotate_deg = rotate_deg, .tilt_deg = tilt_deg, .screen_distance_um = screen_distance_um, .rays = rays,
-                                 .size_px = size_px};
+ConicalRequest conical_request(const std::string& crystal, double length_um, double wavelength_nm, const std::string& optics,
+                               const std::string& beam, double waist_um, double pinhole_um, double filter_um, const py::object& polarization,
+                               double z, double rotate_deg, double tilt_deg, double screen_distance_um, std::int64_t rays, int size_px) {
+    return {.crystal = crystal, .length_um = length_um, .wavelength_nm = wavelength_nm, .optics = parse_conical_optics(optics),
+            .beam = parse_conical_beam(beam), .waist_um = waist_um, .pinhole_um = pinhole_um, .filter_um = filter_um,
+            .stokes = stokes_argument(polarization), .z = z, .rotate_deg = rotate_deg, .tilt_deg = tilt_deg,
+            .screen_distance_um = screen_distance_um, .rays = rays, .size_px = size_px};
+}
+
+Result conical(const ConicalRequest& request, const py::object& progress) {
     const auto [plan, screen] = with_progress(progress, [&](const ProgressCallback& callback) {
         ConicalPlan planned = plan_conical(request, catalog());
         ConicalScreen rendered = render_conical_screen(planned, callback);
         return std::pair{std::move(planned), std::move(rendered)};
     });
+    return conical_result(plan, screen);
+}
+
+// The arguments of conical() and of the request a sweep steps.
+auto conical_arguments() {
+    return std::make_tuple(py::kw_only(), py::arg("crystal") = "KGd(WO4)2", py::arg("length_um") = 20000.0, py::arg("wavelength_nm") = 633.0,
+                           py::arg("optics") = "wave", py::arg("beam") = "gaussian", py::arg("waist_um") = 40.0, py::arg("pinhole_um") = 25.0,
+                           py::arg("filter_um") = 50000.0, py::arg("polarization") = "unpolarized", py::arg("z") = 0.0,
+                           py::arg("rotate_deg") = 0.0, py::arg("tilt_deg") = 0.0, py::arg("screen_distance_um") = 50000.0,
+                           py::arg("rays") = 200000, py::arg("size_px") = 1024);
+}
+
+}  // namespace
+
+Result conical_result(const ConicalPlan& plan, const ConicalScreen& screen) {
     Result result{to_numpy(screen.linear_rgb), {"I", "I", "I"},
-                  request.optics == ConicalOptics::wave ? "intensity of the paraxial theory, normalised so that the brightest pixel is 1"
-                                                        : "collected ray power per pixel, normalised so that the brightest pixel is 1",
+                  plan.request.optics == ConicalOptics::wave ? "intensity of the paraxial theory, normalised so that the brightest pixel is 1"
+                                                             : "collected ray power per pixel, normalised so that the brightest pixel is 1",
                   measurements_dict(screen.measurements), plan.notes, py::dict()};
     result.details["principal_n"] = plan.principal_n;
     result.details["cone_angle_deg"] = plan.cone_angle_rad * 180.0 / std::numbers::pi;
@@ -49,15 +65,11 @@ Result conical(const std::string& crystal, double length_um, double wavelength_n
     return result;
 }
 
-}  // namespace
-
 void bind_conical(py::module_& module) {
-    module.def("conical", &conical, py::kw_only(), py::arg("crystal") = "KGd(WO4)2", py::arg("length_um") = 20000.0,
-               py::arg("wavelength_nm") = 633.0, py::arg("optics") = "wave", py::arg("beam") = "gaussian", py::arg("waist_um") = 40.0,
-               py::arg("pinhole_um") = 25.0, py::arg("filter_um") = 50000.0, py::arg("polarization") = "unpolarized", py::arg("z") = 0.0,
-               py::arg("rotate_deg") = 0.0, py::arg("tilt_deg") = 0.0, py::arg("screen_distance_um") = 50000.0, py::arg("rays") = 200000,
-               py::arg("size_px") = 1024, py::arg("progress") = py::none(),
-               R"(The screen behind a biaxial slab cut perpendicular to an optic axis: internal conical refraction.
+    py::class_<ConicalRequest>(module, "_ConicalRequest", "A conical() call's arguments, checked for type (petroscope.sweep steps them).");
+    def_with_arguments(module, "_conical_request", &conical_request, conical_arguments());
+    def_with_arguments(module, "conical", make_then_compute(&conical_request, &conical), conical_arguments(), py::arg("progress") = py::none(),
+                       R"(The screen behind a biaxial slab cut perpendicular to an optic axis: internal conical refraction.
 
 crystal: a biaxial mineral. length_um: the slab's length along the optic axis. wavelength_nm.
 optics: 'wave' (paraxial Belsky-Khapalyuk-Berry theory) or 'ray' (rays through a pinhole, traced with

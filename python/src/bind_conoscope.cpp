@@ -1,33 +1,50 @@
 // conoscope(): the interference figure of a crystal slab.
 #include "bindings.hpp"
-#include "convert.hpp"
-
-#include "petroscope/api/conoscope_figure.hpp"
+#include "computations.hpp"
 
 #include <pybind11/stl.h>
+
+#include <tuple>
 
 namespace petroscope::python {
 namespace {
 
-Result conoscope(const std::string& mineral, double thickness_um, const std::optional<std::string>& cut, double azimuth_deg,
-                 double tilt_deg, const std::optional<std::array<double, 3>>& euler_zyz_deg, double numerical_aperture, int size_px,
-                 const py::object& light, double stage_deg, double polarizer_deg, double analyzer_deg, bool analyzer_in, double surround_n,
-                 const std::string& mounting, const std::optional<std::string>& plate, double plate_slow_deg, double wedge_position,
-                 const py::object& progress) {
-    const ConoscopeRequest request{.mineral = mineral, .thickness_um = thickness_um,
-                                   .orientation = orientation_argument(cut, azimuth_deg, tilt_deg, euler_zyz_deg),
-                                   .numerical_aperture = numerical_aperture, .size_px = size_px, .light = light_argument(light),
-                                   .stage_deg = stage_deg, .polarizer_deg = polarizer_deg, .analyzer_deg = analyzer_deg,
-                                   .analyzer_in = analyzer_in, .surround_n = surround_n, .mounting = parse_slab_mounting(mounting),
-                                   .plate = plate_argument(plate, plate_slow_deg, wedge_position)};
+ConoscopeRequest conoscope_request(const std::string& mineral, double thickness_um, const std::optional<std::string>& cut,
+                                   double azimuth_deg, double tilt_deg, const std::optional<std::array<double, 3>>& euler_zyz_deg,
+                                   double numerical_aperture, int size_px, const py::object& light, double stage_deg, double polarizer_deg,
+                                   double analyzer_deg, bool analyzer_in, double surround_n, const std::string& mounting,
+                                   const std::optional<std::string>& plate, double plate_slow_deg, double wedge_position) {
+    return {.mineral = mineral, .thickness_um = thickness_um, .orientation = orientation_argument(cut, azimuth_deg, tilt_deg, euler_zyz_deg),
+            .numerical_aperture = numerical_aperture, .size_px = size_px, .light = light_argument(light), .stage_deg = stage_deg,
+            .polarizer_deg = polarizer_deg, .analyzer_deg = analyzer_deg, .analyzer_in = analyzer_in, .surround_n = surround_n,
+            .mounting = parse_slab_mounting(mounting), .plate = plate_argument(plate, plate_slow_deg, wedge_position)};
+}
+
+Result conoscope(const ConoscopeRequest& request, const py::object& progress) {
     const auto [plan, figure] = with_progress(progress, [&](const ProgressCallback& callback) {
         ConoscopePlan planned = plan_conoscope(request, catalog());
         ConoscopeFigure rendered = render_conoscope_figure(planned, callback);
         return std::pair{std::move(planned), std::move(rendered)};
     });
+    return conoscope_result(plan, figure);
+}
+
+// The arguments of conoscope() and of the request a sweep steps.
+auto conoscope_arguments() {
+    return std::make_tuple(py::kw_only(), py::arg("mineral") = "muscovite", py::arg("thickness_um") = 30.0, py::arg("cut") = py::none(),
+                           py::arg("azimuth_deg") = 0.0, py::arg("tilt_deg") = 0.0, py::arg("euler_zyz_deg") = py::none(),
+                           py::arg("numerical_aperture") = 0.85, py::arg("size_px") = 512, py::arg("light") = py::none(),
+                           py::arg("stage_deg") = 0.0, py::arg("polarizer_deg") = 0.0, py::arg("analyzer_deg") = 90.0,
+                           py::arg("analyzer_in") = true, py::arg("surround_n") = 1.54, py::arg("mounting") = "immersed",
+                           py::arg("plate") = py::none(), py::arg("plate_slow_deg") = 45.0, py::arg("wedge_position") = 0.5);
+}
+
+}  // namespace
+
+Result conoscope_result(const ConoscopePlan& plan, const ConoscopeFigure& figure) {
     Result result{to_numpy(figure.image.linear_rgb), {"R", "G", "B"},
                   "linear sRGB; 1 = white, the light of parallel polars without the crystal, times the exposure" +
-                      std::string(request.light.monochromatic() ? " (monochromatic: the transmitted intensity in every channel)" : ""),
+                      std::string(plan.light.monochromatic() ? " (monochromatic: the transmitted intensity in every channel)" : ""),
                   measurements_dict(figure.measurements), plan.notes, py::dict()};
     result.details["cut"] = plan.cut ? py::object(py::str(std::string(cut_name(*plan.cut)))) : py::object(py::none());
     result.details["illuminant"] = figure.image.illuminant;
@@ -35,16 +52,12 @@ Result conoscope(const std::string& mineral, double thickness_um, const std::opt
     return result;
 }
 
-}  // namespace
-
 void bind_conoscope(py::module_& module) {
-    module.def("conoscope", &conoscope, py::kw_only(), py::arg("mineral") = "muscovite", py::arg("thickness_um") = 30.0,
-               py::arg("cut") = py::none(), py::arg("azimuth_deg") = 0.0, py::arg("tilt_deg") = 0.0, py::arg("euler_zyz_deg") = py::none(),
-               py::arg("numerical_aperture") = 0.85, py::arg("size_px") = 512, py::arg("light") = py::none(), py::arg("stage_deg") = 0.0,
-               py::arg("polarizer_deg") = 0.0, py::arg("analyzer_deg") = 90.0, py::arg("analyzer_in") = true, py::arg("surround_n") = 1.54,
-               py::arg("mounting") = "immersed", py::arg("plate") = py::none(), py::arg("plate_slow_deg") = 45.0,
-               py::arg("wedge_position") = 0.5, py::arg("progress") = py::none(),
-               R"(The conoscopic interference figure of a crystal slab, as through the Bertrand lens.
+    py::class_<ConoscopeRequest>(module, "_ConoscopeRequest", "A conoscope() call's arguments, checked for type (petroscope.sweep steps them).");
+    def_with_arguments(module, "_conoscope_request", &conoscope_request, conoscope_arguments());
+    def_with_arguments(module, "conoscope", make_then_compute(&conoscope_request, &conoscope), conoscope_arguments(),
+                       py::arg("progress") = py::none(),
+                       R"(The conoscopic interference figure of a crystal slab, as through the Bertrand lens.
 
 mineral: name or alias (petroscope.minerals()). thickness_um: the slab's thickness in µm.
 cut: 'optic-axis', 'acute-bisectrix', 'obtuse-bisectrix' or 'optic-normal' (None: acute bisectrix for

@@ -27,6 +27,14 @@ void bind_results(py::module_& module) {
         .def_readonly("measurements", &Result::measurements, "numbers measured on the image, by name (None: nothing to measure)")
         .def_readonly("notes", &Result::notes, "notes and warnings for the user")
         .def_readonly("details", &Result::details, "quantities particular to the computation (units in the names)")
+        // Picklable, so that a Result comes back from another process (Dask, multiprocessing).
+        .def(py::pickle(
+            [](const Result& r) { return py::make_tuple(r.image, r.channels, r.pixel_values, r.measurements, r.notes, r.details); },
+            [](const py::tuple& state) {
+                if (state.size() != 6) throw py::value_error("Result: expected the 6 fields of a pickled Result");
+                return Result{state[0].cast<py::array_t<float>>(), state[1].cast<std::vector<std::string>>(), state[2].cast<std::string>(),
+                              state[3].cast<py::dict>(), state[4].cast<std::vector<std::string>>(), state[5].cast<py::dict>()};
+            }))
         .def("__repr__", [](const Result& result) {
             return "<petroscope.Result " + std::to_string(result.image.shape(1)) + "x" + std::to_string(result.image.shape(0)) + ", " +
                    std::to_string(result.image.shape(2)) + " channels, " + std::to_string(result.measurements.size()) + " measurements>";

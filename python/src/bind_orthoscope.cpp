@@ -1,14 +1,14 @@
 // Thin sections (from arrays or files) and orthoscope(): a section between the polars.
 #include "bindings.hpp"
-#include "convert.hpp"
+#include "computations.hpp"
 
-#include "petroscope/api/orthoscope_image.hpp"
 #include "petroscope/optics/orientation.hpp"
 
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <tuple>
 
 namespace petroscope::python {
 namespace {
@@ -51,25 +51,41 @@ ThinSection make_section(const py::array& labels, std::vector<ThinSectionGrain> 
     return section;
 }
 
-Result orthoscope(const ThinSection& section, bool analyzer_in, double stage_deg, double polarizer_deg, double analyzer_deg,
-                  const std::optional<std::string>& plate, double plate_slow_deg, double wedge_position, double condenser_na,
-                  int condenser_rings, std::optional<double> thickness_um, bool exact, const py::object& light, const py::object& progress) {
-    OrthoscopeRequest request{.section = section, .analyzer_in = analyzer_in, .stage_deg = stage_deg, .polarizer_deg = polarizer_deg,
-                              .analyzer_deg = analyzer_deg, .plate = plate_argument(plate, plate_slow_deg, wedge_position),
-                              .condenser_na = condenser_na, .condenser_rings = condenser_rings, .thickness_um = thickness_um,
-                              .exact = exact, .light = light_argument(light)};
-    const bool monochromatic = request.light.monochromatic();
-    const auto [notes, image] = with_progress(progress, [&](const ProgressCallback& callback) {
-        const OrthoscopePlan plan = plan_orthoscope(std::move(request), catalog());
-        return std::pair{plan.notes, render_orthoscope_image(plan, callback)};
+OrthoscopeRequest orthoscope_request(const ThinSection& section, bool analyzer_in, double stage_deg, double polarizer_deg,
+                                     double analyzer_deg, const std::optional<std::string>& plate, double plate_slow_deg,
+                                     double wedge_position, double condenser_na, int condenser_rings, std::optional<double> thickness_um,
+                                     bool exact, const py::object& light) {
+    return {.section = section, .analyzer_in = analyzer_in, .stage_deg = stage_deg, .polarizer_deg = polarizer_deg,
+            .analyzer_deg = analyzer_deg, .plate = plate_argument(plate, plate_slow_deg, wedge_position), .condenser_na = condenser_na,
+            .condenser_rings = condenser_rings, .thickness_um = thickness_um, .exact = exact, .light = light_argument(light)};
+}
+
+Result orthoscope(const OrthoscopeRequest& request, const py::object& progress) {
+    const auto [plan, image] = with_progress(progress, [&](const ProgressCallback& callback) {
+        OrthoscopePlan planned = plan_orthoscope(request, catalog());
+        OrthoscopeImage rendered = render_orthoscope_image(planned, callback);
+        return std::pair{std::move(planned), std::move(rendered)};
     });
-    return {to_numpy(image.image.linear_rgb), {"R", "G", "B"},
-            "linear sRGB; 1 = white, the light after the polarizer, times the exposure" +
-                std::string(monochromatic ? " (monochromatic: the transmitted intensity in every channel)" : ""),
-            measurements_dict(image.measurements), notes, py::dict()};
+    return orthoscope_result(plan, image);
+}
+
+// The arguments of orthoscope() and of the request a sweep steps.
+auto orthoscope_arguments() {
+    return std::make_tuple(py::arg("section"), py::kw_only(), py::arg("analyzer_in") = true, py::arg("stage_deg") = 0.0,
+                           py::arg("polarizer_deg") = 0.0, py::arg("analyzer_deg") = 90.0, py::arg("plate") = py::none(),
+                           py::arg("plate_slow_deg") = 45.0, py::arg("wedge_position") = 0.5, py::arg("condenser_na") = 0.0,
+                           py::arg("condenser_rings") = 0, py::arg("thickness_um") = py::none(), py::arg("exact") = false,
+                           py::arg("light") = py::none());
 }
 
 }  // namespace
+
+Result orthoscope_result(const OrthoscopePlan& plan, const OrthoscopeImage& image) {
+    return {to_numpy(image.image.linear_rgb), {"R", "G", "B"},
+            "linear sRGB; 1 = white, the light after the polarizer, times the exposure" +
+                std::string(plan.light.monochromatic() ? " (monochromatic: the transmitted intensity in every channel)" : ""),
+            measurements_dict(image.measurements), plan.notes, py::dict()};
+}
 
 void bind_orthoscope(py::module_& module) {
     py::class_<ThinSectionGrain>(module, "Grain", "One grain of a thin section: its label in the map, its mineral and orientation.")
@@ -102,11 +118,11 @@ void bind_orthoscope(py::module_& module) {
                    std::to_string(s.grains.size()) + " grains>";
         });
 
-    module.def("orthoscope", &orthoscope, py::arg("section"), py::kw_only(), py::arg("analyzer_in") = true, py::arg("stage_deg") = 0.0,
-               py::arg("polarizer_deg") = 0.0, py::arg("analyzer_deg") = 90.0, py::arg("plate") = py::none(), py::arg("plate_slow_deg") = 45.0,
-               py::arg("wedge_position") = 0.5, py::arg("condenser_na") = 0.0, py::arg("condenser_rings") = 0,
-               py::arg("thickness_um") = py::none(), py::arg("exact") = false, py::arg("light") = py::none(), py::arg("progress") = py::none(),
-               R"(A thin section as seen through the eyepieces.
+    py::class_<OrthoscopeRequest>(module, "_OrthoscopeRequest", "An orthoscope() call's arguments, checked for type (petroscope.sweep steps them).");
+    def_with_arguments(module, "_orthoscope_request", &orthoscope_request, orthoscope_arguments());
+    def_with_arguments(module, "orthoscope", make_then_compute(&orthoscope_request, &orthoscope), orthoscope_arguments(),
+                       py::arg("progress") = py::none(),
+                       R"(A thin section as seen through the eyepieces.
 
 section: a Section (petroscope.Section from arrays, or petroscope.read_section(path)).
 analyzer_in: False for plane-polarized light. stage_deg: stage rotation, counter-clockwise.

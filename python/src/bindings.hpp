@@ -13,5 +13,6 @@ void bind_conical(pybind11::module_& module);    // conical()
 void bind_chart(pybind11::module_& module);      // michel_levy_colours()
 void bind_interface(pybind11::module_& module);  // Medium, Wave, InterfaceResult, interface()
 void bind_fit(pybind11::module_& module);        // fit_conoscope()
+void bind_sweep(pybind11::module_& module);      // _sweep(), _sweep_fields()
 
 }  // namespace petroscope::python

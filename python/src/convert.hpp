@@ -14,6 +14,8 @@
 
 #include <array>
 #include <memory>
+#include <tuple>
+#include <utility>
 #include <optional>
 #include <string>
 #include <vector>
@@ -79,6 +81,22 @@ auto with_progress(const py::object& progress, Work&& work) {
     PythonProgress reporter(progress);
     const ProgressCallback callback = reporter.callback();
     return without_gil([&] { return work(callback); });
+}
+
+/// Binds `function` as `name` with the keyword arguments in the tuple `arguments` (py::arg values shared by
+/// several bindings), then `extra` (more arguments, a docstring).
+template <class Function, class... Arguments, class... Extra>
+void def_with_arguments(py::module_& module, const char* name, Function&& function, const std::tuple<Arguments...>& arguments,
+                        Extra&&... extra) {
+    std::apply([&](const auto&... argument) { module.def(name, std::forward<Function>(function), argument..., std::forward<Extra>(extra)...); },
+               arguments);
+}
+
+/// A function of the request's arguments and then `progress` that makes the request with `make` and
+/// computes it with `compute`: one parameter list for a computation (conoscope) and its request (sweeps).
+template <class Request, class... Parameters>
+auto make_then_compute(Request (*make)(Parameters...), Result (*compute)(const Request&, const py::object&)) {
+    return [make, compute](Parameters... parameters, const py::object& progress) { return compute(make(parameters...), progress); };
 }
 
 /// Python's KeyboardInterrupt, ValueError (bad input) and petroscope.Cancelled for the library's errors.

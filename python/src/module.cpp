@@ -14,4 +14,5 @@ PYBIND11_MODULE(_petroscope, module) {
     petroscope::python::bind_chart(module);
     petroscope::python::bind_interface(module);
     petroscope::python::bind_fit(module);
+    petroscope::python::bind_sweep(module);
 }

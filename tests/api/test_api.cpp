@@ -1,5 +1,7 @@
 // The library layer: requests in the user's terms give what the physics gives for the same settings,
 // bad requests fail before any work with a message naming the value, and progress can cancel.
+#include "api_testing.hpp"
+
 #include "petroscope/api/conical_screen.hpp"
 #include "petroscope/api/conoscope_figure.hpp"
 #include "petroscope/api/conoscope_photo_model.hpp"
@@ -15,28 +17,6 @@
 
 namespace petroscope {
 namespace {
-
-const MineralCatalog& minerals() {
-    static const MineralCatalog catalog = load_mineral_catalog(std::filesystem::path(PETROSCOPE_SOURCE_DIR) / "minerals");
-    return catalog;
-}
-
-std::optional<double> measured(const Measurements& measurements, const std::string& name) {
-    for (const Measurement& m : measurements) {
-        if (m.name == name) return m.value;
-    }
-    ADD_FAILURE() << "no measurement " << name;
-    return std::nullopt;
-}
-
-void expect_input_error(const std::function<void()>& call, const std::string& expected) {
-    try {
-        call();
-        ADD_FAILURE() << "no error; expected one mentioning '" << expected << "'";
-    } catch (const InputError& error) {
-        EXPECT_NE(std::string(error.what()).find(expected), std::string::npos) << error.what();
-    }
-}
 
 TEST(LibraryLayer, TheDefaultCutFollowsTheOpticalClass) {
     EXPECT_EQ(default_cut(OpticalClass::biaxial), Cut::acute_bisectrix);
