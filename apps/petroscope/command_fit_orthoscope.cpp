@@ -4,9 +4,9 @@
 #include "cli_light.hpp"
 #include "fit_report.hpp"
 
+#include "petroscope/api/grain_fit.hpp"
 #include "petroscope/core/error.hpp"
 #include "petroscope/core/text.hpp"
-#include "petroscope/fit/orthoscope_fit.hpp"
 #include "petroscope/io/atomic_file.hpp"
 #include "petroscope/io/data_files.hpp"
 #include "petroscope/io/image_writer.hpp"
@@ -139,40 +139,30 @@ Image swatches(const std::vector<GrainPhoto>& photos, const OrthoscopeFitResult&
     return image;
 }
 
-void run_fit_orthoscope(const GrainFitOptions& options, const std::string& minerals_dir) {
-    const MineralCatalog catalog = load_mineral_catalog(minerals_directory(minerals_dir));
-    const Mineral& mineral = with_option("--mineral", [&]() -> const Mineral& { return catalog.find(options.mineral); });
+// The request of the options; the grain's colour in each photo is measured here.
+GrainFitRequest grain_fit_request(const GrainFitOptions& options) {
     if (!options.masks.empty() && !options.regions.empty()) throw InputError("--mask and --region: give one or the other");
-    const Light light = light_from_options(options.light);
-    if (light.monochromatic()) throw InputError("--wavelength: fit orthoscope needs white light (it reads interference colours)");
-
-    OrthoscopeFitOptions fit;
-    fit.microscope.wavelengths_nm = light.wavelengths_nm();
-    fit.microscope.condenser_na = options.condenser_na;
-    fit.microscope.polars = {options.polarizer_deg, options.analyzer_deg, true};
-    fit.mounting = standard_mounting(catalog);
-    fit.exposure = options.light.exposure;
-    fit.exposure_free = options.exposure_free;
-    fit.white_balance = !options.light.no_white_balance;
-    fit.candidates = options.candidates;
-    std::tie(fit.thickness_min_um, fit.thickness_max_um) = length_range_um("--thickness-range", options.thickness_range);
+    GrainFitRequest request;
+    request.mineral = options.mineral;
+    request.exposure_free = options.exposure_free;
+    request.candidates = options.candidates;
+    request.condenser_na = options.condenser_na;
+    request.polarizer_deg = options.polarizer_deg;
+    request.analyzer_deg = options.analyzer_deg;
+    request.light = light_from_options(options.light);
+    if (request.light.monochromatic()) throw InputError("--wavelength: fit orthoscope needs white light (it reads interference colours)");
+    std::tie(request.thickness_min_um, request.thickness_max_um) = length_range_um("--thickness-range", options.thickness_range);
     if (!options.euler.empty()) {
         if (!options.orientation.empty() && options.orientation != "known") throw InputError("--euler-deg gives the orientation: it needs --orientation known (or none)");
-        fit.orientation = GrainOrientation::known;
+        request.orientation = GrainOrientation::known;
         const std::array<double, 3> angles = euler_angles_deg("--euler-deg", options.euler);
-        fit.known_axes = euler_zyz_deg(angles[0], angles[1], angles[2]);
+        request.euler_zyz_deg = Eigen::Vector3d(angles[0], angles[1], angles[2]);
     } else if (!options.orientation.empty()) {
-        fit.orientation = with_option("--orientation", [&] { return parse_grain_orientation(options.orientation); });
-        if (fit.orientation == GrainOrientation::known) throw InputError("--orientation known: give the orientation with --euler-deg ALPHA,BETA,GAMMA");
+        request.orientation = with_option("--orientation", [&] { return parse_grain_orientation(options.orientation); });
+        if (request.orientation == GrainOrientation::known) throw InputError("--orientation known: give the orientation with --euler-deg ALPHA,BETA,GAMMA");
     }
-    OrthoscopeSettings check;
-    check.microscope = fit.microscope;
-    check.mounting = fit.mounting;
-    check.validate();
-
-    std::vector<GrainPhoto> photos;
     for (std::size_t k = 0; k < options.photos.size(); ++k) {
-        GrainPhoto photo;
+        GrainFitPhoto photo;
         photo.label = options.photos[k];
         const Image image = with_option("--photo", [&] { return read_image(options.photos[k]); });
         photo.colour = measure(options, k, image);
@@ -184,10 +174,19 @@ void run_fit_orthoscope(const GrainFitOptions& options, const std::string& miner
         }
         if (!options.plates.empty()) {
             const std::string& name = per_photo(options.plates, k, "--plate", options.photos.size());
-            if (name != "none") photo.plate = make_plate(plate_request({name, options.plate_deg, 0.5}), catalog);
+            if (name != "none") photo.plate = plate_request({name, options.plate_deg, 0.5});
         }
-        photos.push_back(photo);
+        request.photos.push_back(photo);
     }
+    return request;
+}
+
+void run_fit_orthoscope(const GrainFitOptions& options, const std::string& minerals_dir) {
+    const MineralCatalog catalog = load_mineral_catalog(minerals_directory(minerals_dir));
+    with_option("--mineral", [&]() -> const Mineral& { return catalog.find(options.mineral); });
+    const GrainFitPlan plan = plan_grain_fit(grain_fit_request(options), catalog);
+    const OrthoscopeFitOptions& fit = plan.options;
+    const std::vector<GrainPhoto>& photos = plan.photos;
 
     const std::filesystem::path folder(options.output_dir);
     if (!std::filesystem::is_directory(folder)) throw InputError("-o " + options.output_dir + ": not a folder (create it first)");
@@ -195,8 +194,10 @@ void run_fit_orthoscope(const GrainFitOptions& options, const std::string& miner
     const auto report_path = pending.add(folder / "report.json"), swatch_png = pending.add(folder / "colours.png");
 
     const auto begin = std::chrono::steady_clock::now();
-    const SpectralIntegrator integrator(fit.microscope.wavelengths_nm, load_cie_1931_observer(), load_light_source(light.illuminant));
-    const OrthoscopeFitResult result = fit_orthoscope_grain(photos, mineral, fit, integrator);
+    const OrthoscopeFitResult result = fit_grain(plan, [](double fraction_done) {
+        show_progress("fit orthoscope", fraction_done);
+        return true;
+    });
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
 
     const nlohmann::json report = report_json(options, photos, fit, result, seconds);

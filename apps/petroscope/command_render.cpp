@@ -3,6 +3,7 @@
 #include "cli_common.hpp"
 #include "frame_command.hpp"
 
+#include "petroscope/api/scene_image.hpp"
 #include "petroscope/core/error.hpp"
 #include "petroscope/core/text.hpp"
 #include "petroscope/io/data_files.hpp"
@@ -40,13 +41,6 @@ private:
     bool allow_large_ = false;
 };
 
-// Without --allow-large: at most 4096² pixels and 65536 samples per pixel. With it: the scene's limit of
-// 16384 px per side and 10⁶ samples. Memory: 88 bytes a pixel (16 floats of Stokes XYZ and standard
-// errors, the camera's XYZ and the RGB image): 1.5 GB at 4096², 24 GB at 16384² (docs/cli_intro.md).
-constexpr double kBytesPerPixel = 88.0;
-constexpr long long kLargePixels = 4096LL * 4096LL;
-constexpr int kLargeSamples = 65536;
-
 void RenderOptions::add_options(CLI::App* command) {
     command->add_option("--scene", scene_, "Scene file (JSON, docs/render.md)")->required();
     command->add_option("--spp", spp_, "Samples (paths) per pixel, 1 to 1000000")->capture_default_str();
@@ -72,32 +66,28 @@ std::string scene_hash(const std::string& text) {
 }
 
 PreparedFrame RenderOptions::prepare(FrameContext& context) const {
-    if (spp_ < 1 || spp_ > 1000000) throw InputError("--spp " + std::to_string(spp_) + " is out of range (1 to 1000000)");
-    if (depth_ < 1 || depth_ > 100000) throw InputError("--depth " + std::to_string(depth_) + " is out of range (1 to 100000)");
+    // The library checks these too; here the messages name the options.
+    if (spp_ < 1 || spp_ > kSceneMaxSamples) throw InputError("--spp " + std::to_string(spp_) + " is out of range (1 to 1000000)");
+    if (depth_ < 1 || depth_ > kSceneMaxDepth) throw InputError("--depth " + std::to_string(depth_) + " is out of range (1 to 100000)");
     if (polarizer_deg_ && !std::isfinite(*polarizer_deg_)) throw InputError("--polarizer-deg must be a finite angle");
     if (polarizer_deg_ && no_polarizer_) throw InputError("--polarizer-deg and --no-polarizer exclude each other");
     if (!(exposure_ > 0.0) || !std::isfinite(exposure_)) throw InputError("--exposure must be > 0");
-    const auto spectrum = std::make_shared<RenderSpectrum>(render_spectrum(load_cie_1931_observer(), load_light_source("D65")));
+    const auto spectrum = std::make_shared<RenderSpectrum>(scene_render_spectrum());
     const std::string scene_text = read_text_file(scene_);  // read once: parsed and hashed alike
     const auto scene = std::make_shared<Scene>(parse_scene(scene_text, scene_, context.catalog(), *spectrum));
     const long long pixels = static_cast<long long>(scene->camera.width_px) * scene->camera.height_px;
-    if (!allow_large_ && pixels > kLargePixels) {
+    if (!allow_large_ && pixels > kSceneLargePixels) {
         throw InputError(scene_ + ": camera: " + std::to_string(scene->camera.width_px) + " x " + std::to_string(scene->camera.height_px) +
-                         " px is above 4096 x 4096 (it needs " + format_number(std::round(static_cast<double>(pixels) * kBytesPerPixel / 1e8) / 10.0) +
+                         " px is above 4096 x 4096 (it needs " + format_number(std::round(static_cast<double>(pixels) * kSceneBytesPerPixel / 1e8) / 10.0) +
                          " GB); add --allow-large to render it anyway");
     }
-    if (!allow_large_ && spp_ > kLargeSamples) {
+    if (!allow_large_ && spp_ > kSceneLargeSamples) {
         throw InputError("--spp " + std::to_string(spp_) + " is above 65536; add --allow-large to render it anyway");
     }
-    if (polarizer_deg_) {
-        scene->camera.has_polarizer = true;
-        scene->camera.polarizer_deg = *polarizer_deg_;
-    }
-    if (no_polarizer_) scene->camera.has_polarizer = false;
-    RenderSettings settings;
-    settings.samples_per_pixel = spp_;
-    settings.max_depth = depth_;
-    settings.seed = static_cast<std::uint64_t>(seed_);
+    const RenderSettings settings = plan_scene_render({.samples_per_pixel = spp_, .max_depth = depth_, .polarizer_deg = polarizer_deg_,
+                                                       .no_polarizer = no_polarizer_, .seed = static_cast<std::uint64_t>(seed_),
+                                                       .exposure = exposure_, .allow_large = allow_large_},
+                                                      *scene);
     const double exposure = exposure_;
     const SceneCamera& camera = scene->camera;
     nlohmann::json sidecar{{"program", "petroscope 0.1.0"},
@@ -125,21 +115,11 @@ PreparedFrame RenderOptions::prepare(FrameContext& context) const {
     }
     PreparedFrame prepared;
     prepared.render = [scene, spectrum, settings, sidecar, exposure](const ProgressCallback& progress) {
-        const RenderResult result = render_scene(*scene, *spectrum, settings, progress);
-        const Image xyz = result.camera_xyz(scene->camera.has_polarizer, scene->camera.polarizer_deg);
-        Image rgb(xyz.width, xyz.height, 3);
-        std::vector<double> relative_errors;
-        for (int y = 0; y < xyz.height; ++y) {
-            for (int x = 0; x < xyz.width; ++x) {
-                const Eigen::Vector3d value = exposure * spectrum->xyz_to_linear_srgb * Eigen::Vector3d(xyz.at(x, y, 0), xyz.at(x, y, 1), xyz.at(x, y, 2));
-                for (int c = 0; c < 3; ++c) rgb.at(x, y, c) = static_cast<float>(value[c]);
-                // Pixels that see a crystal: the others are exact (no wavelength depends on them).
-                const double luminance = result.stokes_xyz.at(x, y, 1), error = result.standard_error_y.at(x, y, 0);
-                if (luminance > 0.02 && error > 1e-6 * luminance) relative_errors.push_back(error / luminance);
-            }
-        }
-        std::sort(relative_errors.begin(), relative_errors.end());
-        const RenderStatistics& s = result.statistics;
+        const SceneImage image = render_scene_image(*scene, *spectrum, settings, exposure, progress);
+        const std::vector<double>& relative_errors = image.relative_errors;
+        const Image& rgb = image.linear_rgb;
+        const Image& xyz = image.linear_rgb;
+        const RenderStatistics& s = image.result.statistics;
         RenderedFrame frame{rgb, sidecar, std::to_string(xyz.width) + "x" + std::to_string(xyz.height) + ", " + std::to_string(settings.samples_per_pixel) + " spp"};
         frame.sidecar["statistics"] = {{"paths", s.paths},
                                        {"paths_per_second", static_cast<double>(s.paths) / std::max(s.seconds, 1e-9)},

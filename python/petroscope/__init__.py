@@ -23,6 +23,7 @@ from ._petroscope import (
     conical,
     conoscope,
     fit_conoscope,
+    fit_orthoscope,
     indicatrix_axes,
     interface,
     michel_levy_colours,
@@ -71,6 +72,28 @@ def verify(*, cases_dir=None, own_sweeps=True):
     from ._files import verify as _verify
 
     return _verify(cases_dir=None if cases_dir is None else _os.fspath(cases_dir), own_sweeps=own_sweeps)
+
+
+def render_scene(path, *, samples_per_pixel=64, max_depth=15, polarizer_deg=None, no_polarizer=False, seed=1, exposure=1.0,
+                 allow_large=False, progress=None):
+    """A scene file (docs/render.md; the paper's scene: scenes/calcite-box.json) rendered by backward spectral
+    polarized ray tracing, as `petroscope render` renders it.
+
+    samples_per_pixel: paths per pixel, 1 to 65536 (to 1e6 with allow_large). max_depth: crystal-face
+    interactions along a path, 1 to 100000. polarizer_deg: a camera polarizer (from the image's right toward
+    up) instead of the scene's; no_polarizer ignores the scene's. seed: the image does not depend on the
+    threads. exposure: multiplies the image. allow_large: above 4096 x 4096 px (88 bytes a pixel).
+    progress: called with the fraction of rows done; return False to cancel. Ctrl-C cancels.
+
+    Returns a Result: image float32 (height, width, 3), linear sRGB; measurements noise_median and noise_p90
+    (the standard error of a pixel's luminance over its value, over the pixels that see a crystal); details:
+    stokes_xyz (height, width, 12: XYZ of S0, S1, S2, S3), standard_error_y (height, width, 4), statistics.
+    Scene files may name texture images: the image libraries are loaded on first use.
+    """
+    from ._files import render_scene as _render
+
+    return _render(_os.fspath(path), samples_per_pixel=samples_per_pixel, max_depth=max_depth, polarizer_deg=polarizer_deg,
+                   no_polarizer=no_polarizer, seed=seed, exposure=exposure, allow_large=allow_large, progress=progress)
 
 
 def sweep(compute, vary, *, frames=None, jobs=0, progress=None, **arguments):
@@ -137,6 +160,7 @@ __all__ = [
     "conical",
     "conoscope",
     "fit_conoscope",
+    "fit_orthoscope",
     "indicatrix_axes",
     "interface",
     "interface_case",
@@ -147,6 +171,7 @@ __all__ = [
     "orthoscope",
     "read_image",
     "read_section",
+    "render_scene",
     "shards",
     "sweep",
     "sweep_fields",

@@ -225,3 +225,68 @@ def conical(
     size_px: int = 1024,
     progress: Progress = None,
 ) -> Result: ...
+def fit_orthoscope(
+    photos: Union[npt.NDArray[np.floating], Sequence[npt.NDArray[np.floating]]],
+    *,
+    mineral: str,
+    stage_deg: Union[float, Sequence[float]] = 0.0,
+    plate: Union[Optional[str], Sequence[Optional[str]]] = None,
+    plate_slow_deg: float = 45.0,
+    mask: Union[npt.ArrayLike, Sequence[npt.ArrayLike], None] = None,
+    region: Union[Tuple[int, int, int, int], Sequence[Tuple[int, int, int, int]], None] = None,
+    orientation: str = "max-birefringence",
+    euler_zyz_deg: Optional[Tuple[float, float, float]] = None,
+    thickness_range_um: Tuple[float, float] = (1.0, 200.0),
+    exposure_free: bool = False,
+    candidates: int = 4,
+    condenser_na: float = 0.0,
+    polarizer_deg: float = 0.0,
+    analyzer_deg: float = 90.0,
+    light: LightArgument = None,
+    progress: Progress = None,
+) -> dict[str, object]: ...
+def render_scene(
+    path: Union[str, os.PathLike[str]],
+    *,
+    samples_per_pixel: int = 64,
+    max_depth: int = 15,
+    polarizer_deg: Optional[float] = None,
+    no_polarizer: bool = False,
+    seed: int = 1,
+    exposure: float = 1.0,
+    allow_large: bool = False,
+    progress: Progress = None,
+) -> Result: ...
+
+Compute = Union[Callable[..., Result], str]
+"""petroscope.conoscope, petroscope.orthoscope or petroscope.conical, or its name."""
+
+class Sweep:
+    kind: str
+    axes: dict[str, npt.NDArray[np.float64]]
+    frames: list[int]
+    results: list[Result]
+    @property
+    def shape(self) -> Tuple[int, ...]: ...
+    @property
+    def frame_count(self) -> int: ...
+    def values(self, frame: int) -> dict[str, float]: ...
+    @property
+    def images(self) -> npt.NDArray[np.float32]: ...
+    def grid(self) -> npt.NDArray[np.float32]: ...
+    def measurement(self, name: str) -> npt.NDArray[np.float64]: ...
+    @staticmethod
+    def merge(parts: Sequence["Sweep"]) -> "Sweep": ...
+    def __len__(self) -> int: ...
+
+def sweep(
+    compute: Compute,
+    vary: dict[str, Sequence[float]],
+    *,
+    frames: Optional[Sequence[int]] = None,
+    jobs: int = 0,
+    progress: Progress = None,
+    **arguments: object,
+) -> Sweep: ...
+def sweep_fields(compute: Compute) -> list[str]: ...
+def shards(frame_count: int, count: int) -> list[list[int]]: ...

@@ -4,50 +4,50 @@
 #include "convert.hpp"
 
 #include "petroscope/api/conoscope_photo_model.hpp"
+#include "petroscope/api/grain_fit.hpp"
+#include "petroscope/microscope/thin_section.hpp"
+
+#include <pybind11/eigen.h>
 
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <map>
+#include <tuple>
 
 namespace petroscope::python {
 namespace {
 
-// Camera values 0 … 1, float, H × W × 3 (or H × W in monochromatic light); TypeError or ValueError otherwise.
-Image photo_argument(const py::array& photo) {
-    if (photo.dtype().kind() != 'f') {
-        throw py::type_error("photo: expected float camera values 0 to 1 (for 8-bit codes, divide by 255), got dtype " +
-                             std::string(py::str(photo.dtype())));
+// A fit's values by name, in four dicts: values, sigma (None where fixed or undetermined), free, identifiable.
+struct FittedValues {
+    py::dict values, sigma, free, identifiable;
+
+    void add(const std::string& name, const FittedValue& fitted) {
+        values[py::str(name)] = fitted.value;
+        sigma[py::str(name)] = fitted.sigma ? py::object(py::float_(*fitted.sigma)) : py::object(py::none());
+        free[py::str(name)] = fitted.free;
+        identifiable[py::str(name)] = fitted.identifiable;
     }
-    const bool gray = photo.ndim() == 2;
-    if (!gray && !(photo.ndim() == 3 && (photo.shape(2) == 3 || photo.shape(2) == 1))) {
-        throw py::value_error("photo: expected an array (height, width, 3) or (height, width)");
+    py::dict report() const {
+        return py::dict(py::arg("values") = values, py::arg("sigma") = sigma, py::arg("free") = free, py::arg("identifiable") = identifiable);
     }
-    const auto values = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(photo);
-    Image image(static_cast<int>(values.shape(1)), static_cast<int>(values.shape(0)), gray ? 1 : static_cast<int>(values.shape(2)));
-    std::copy(values.data(), values.data() + values.size(), image.pixels.begin());
-    return image;
-}
+};
 
 py::dict fit_result_dict(const ConoscopeFitResult& result, Image model_photo) {
-    py::dict values, sigma, free, identifiable;
+    FittedValues fitted;
     for (int j = 0; j < kPhotoParameterCount; ++j) {
-        const py::str name(std::string(photo_parameter_name(static_cast<PhotoParameter>(j))));
-        const FittedValue& fitted = result.parameters[static_cast<std::size_t>(j)];
-        values[name] = fitted.value;
-        sigma[name] = fitted.sigma ? py::object(py::float_(*fitted.sigma)) : py::object(py::none());
-        free[name] = fitted.free;
-        identifiable[name] = fitted.identifiable;
+        fitted.add(std::string(photo_parameter_name(static_cast<PhotoParameter>(j))), result.parameters[static_cast<std::size_t>(j)]);
     }
     py::list candidates;
     for (const ThicknessCandidate& c : result.candidates) {
         candidates.append(py::dict(py::arg("start_thickness_um") = c.start_thickness_um, py::arg("thickness_um") = c.thickness_um,
                                    py::arg("cost_per_residual") = c.cost));
     }
-    py::dict report(py::arg("values") = values, py::arg("sigma") = sigma, py::arg("free") = free, py::arg("identifiable") = identifiable,
-                    py::arg("acceptable") = result.acceptable, py::arg("verdict") = result.verdict, py::arg("rms_residual") = result.rms_residual,
+    py::dict report = fitted.report();
+    report.attr("update")(py::dict(py::arg("acceptable") = result.acceptable, py::arg("verdict") = result.verdict, py::arg("rms_residual") = result.rms_residual,
                     py::arg("explained_variance") = result.explained_variance, py::arg("pixels_used") = result.pixels_used,
                     py::arg("pixels_saturated") = result.pixels_saturated, py::arg("iterations") = result.iterations,
-                    py::arg("candidates") = candidates, py::arg("warnings") = result.warnings);
+                    py::arg("candidates") = candidates, py::arg("warnings") = result.warnings));
     report["model"] = to_numpy(model_photo);
     return report;
 }
@@ -57,7 +57,7 @@ py::dict fit_conoscope(const py::array& photo_array, const std::string& mineral,
                        std::optional<std::pair<double, double>> thickness_range_um, double tilt_deg, double azimuth_deg,
                        const std::vector<std::string>& free, const std::map<std::string, double>& fixed, int candidates,
                        const py::object& progress) {
-    const Image photo = photo_argument(photo_array);
+    const Image photo = image_argument(photo_array, "photo");
     const ConoscopePhotoSetup setup{.cut = cut ? std::optional(parse_cut(*cut)) : std::nullopt, .light = light_argument(light),
                                     .numerical_aperture = numerical_aperture, .polarizer_deg = polarizer_deg,
                                     .analyzer_deg = analyzer_deg, .surround_n = surround_n};
@@ -81,6 +81,125 @@ py::dict fit_conoscope(const py::array& photo_array, const std::string& mineral,
         return std::pair{std::move(fitted), std::move(rendered)};
     });
     return fit_result_dict(result, std::move(model_photo));
+}
+
+
+// One value for all photos, or a list (or tuple) of one per photo.
+std::vector<py::object> per_photo(const py::object& value, std::size_t photos, const std::string& argument) {
+    if (!py::isinstance<py::list>(value) && !py::isinstance<py::tuple>(value)) return std::vector<py::object>(photos, value);
+    const auto items = value.cast<std::vector<py::object>>();
+    if (items.size() != photos) {
+        throw py::value_error(argument + ": give one value for all " + std::to_string(photos) + " photos or a list of one per photo (got " +
+                              std::to_string(items.size()) + ")");
+    }
+    return items;
+}
+
+// The grain's pixels in a photo: a mask array (non-zero: the grain), a region (x, y, width, height) or the whole photo.
+Image grain_mask(const Image& photo, const py::object& mask, const py::object& region) {
+    if (!mask.is_none()) {
+        const auto values = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(mask);
+        if (!values || values.ndim() != 2 || values.shape(0) != photo.height || values.shape(1) != photo.width) {
+            throw py::value_error("mask: expected an array (height, width) of the photo's size, " + std::to_string(photo.height) + " x " +
+                                  std::to_string(photo.width) + ", non-zero on the grain");
+        }
+        Image image(photo.width, photo.height, 1);
+        std::transform(values.data(), values.data() + values.size(), image.pixels.begin(), [](float v) { return v != 0.0f ? 1.0f : 0.0f; });
+        return image;
+    }
+    if (!region.is_none()) {
+        std::array<int, 4> r{};
+        try {
+            r = region.cast<std::array<int, 4>>();
+        } catch (const py::cast_error&) {
+            throw py::type_error("region: expected (x, y, width, height) in whole pixels, the top-left corner first");
+        }
+        return rectangle_mask(photo.width, photo.height, r[0], r[1], r[2], r[3]);
+    }
+    Image whole(photo.width, photo.height, 1);
+    std::fill(whole.pixels.begin(), whole.pixels.end(), 1.0f);
+    return whole;
+}
+
+// Regions: one (x, y, width, height) for all photos, or a list of one per photo.
+std::vector<py::object> per_photo_region(const py::object& region, std::size_t photos) {
+    const bool listed = (py::isinstance<py::list>(region) || py::isinstance<py::tuple>(region)) && py::len(region) > 0 &&
+                        (py::isinstance<py::list>(region[py::int_(0)]) || py::isinstance<py::tuple>(region[py::int_(0)]));
+    return listed ? per_photo(region, photos, "region") : std::vector<py::object>(photos, region);
+}
+
+GrainFitRequest grain_fit_request(const py::object& photos_argument, const std::string& mineral, const py::object& stage_deg,
+                                  const py::object& plate, double plate_slow_deg, const py::object& mask, const py::object& region,
+                                  const std::string& orientation, const std::optional<std::array<double, 3>>& euler_zyz_deg) {
+    std::vector<py::array> photos;
+    if (py::isinstance<py::array>(photos_argument)) {
+        photos.push_back(photos_argument.cast<py::array>());
+    } else {
+        for (const py::handle photo : photos_argument) {
+            if (!py::isinstance<py::array>(photo)) throw py::type_error("photos: expected a photo array or a list of photo arrays");
+            photos.push_back(py::reinterpret_borrow<py::array>(photo));
+        }
+    }
+    if (!mask.is_none() && !region.is_none()) throw py::value_error("mask and region: give one or the other");
+    GrainFitRequest request;
+    request.mineral = mineral;
+    request.orientation = parse_grain_orientation(orientation);
+    if (euler_zyz_deg) request.euler_zyz_deg = Eigen::Vector3d((*euler_zyz_deg)[0], (*euler_zyz_deg)[1], (*euler_zyz_deg)[2]);
+    const auto stages = per_photo(stage_deg, photos.size(), "stage_deg"), plates = per_photo(plate, photos.size(), "plate");
+    const auto masks = per_photo(mask, photos.size(), "mask"), regions = per_photo_region(region, photos.size());
+    for (std::size_t k = 0; k < photos.size(); ++k) {
+        const std::string label = "photos[" + std::to_string(k) + "]";
+        const Image photo = image_argument(photos[k], label);
+        GrainFitPhoto fit_photo{grain_colour(photo, grain_mask(photo, masks[k], regions[k])), stages[k].cast<double>(), std::nullopt, label};
+        fit_photo.plate = plate_argument(plates[k].cast<std::optional<std::string>>(), plate_slow_deg, 0.5);
+        request.photos.push_back(std::move(fit_photo));
+    }
+    return request;
+}
+
+py::dict grain_fit_dict(const GrainFitPlan& plan, const OrthoscopeFitResult& result) {
+    FittedValues fitted;
+    fitted.add("thickness_um", result.thickness_um);
+    fitted.add("retardation_550nm", result.retardation_nm);
+    fitted.add("birefringence_550nm", result.birefringence);
+    for (std::size_t a = 0; a < 3; ++a) fitted.add("angle_" + std::to_string(a) + "_deg", result.angles_deg[a]);
+    fitted.add("exposure", result.exposure);
+    py::list photos, candidates;
+    for (std::size_t k = 0; k < plan.photos.size(); ++k) {
+        const GrainColour& colour = plan.photos[k].colour;
+        photos.append(py::dict(py::arg("mean_code") = colour.mean_code, py::arg("model_code") = result.model_code[k],
+                               py::arg("pixels") = colour.pixels, py::arg("pixels_saturated") = colour.saturated));
+    }
+    for (const GrainCandidate& c : result.candidates) {
+        candidates.append(py::dict(py::arg("thickness_um") = c.thickness_um, py::arg("angles_deg") = c.angles_deg, py::arg("rms_code") = c.rms_code));
+    }
+    py::dict report = fitted.report();
+    report.attr("update")(py::dict(
+        py::arg("acceptable") = result.acceptable, py::arg("verdict") = result.verdict, py::arg("rms_code") = result.rms_code,
+        py::arg("thickness_lower_bound_um") = result.thickness_lower_bound_um, py::arg("euler_zyz_deg") = euler_zyz_deg_of(result.axes),
+        py::arg("angles_meaning") = plan.options.orientation == GrainOrientation::max_birefringence ? "angle_0_deg: the indicatrix X axis at stage 0, from E toward N"
+                                    : plan.options.orientation == GrainOrientation::free            ? "angle_0_deg … angle_2_deg: ZYZ Euler angles of the indicatrix at stage 0"
+                                                                                                     : "unused (orientation given)",
+        py::arg("photos") = photos, py::arg("candidates") = candidates, py::arg("warnings") = result.warnings));
+    return report;
+}
+
+py::dict fit_orthoscope(const py::object& photos, const std::string& mineral, const py::object& stage_deg, const py::object& plate,
+                        double plate_slow_deg, const py::object& mask, const py::object& region, const std::string& orientation,
+                        const std::optional<std::array<double, 3>>& euler_zyz_deg, std::pair<double, double> thickness_range_um,
+                        bool exposure_free, int candidates, double condenser_na, double polarizer_deg, double analyzer_deg,
+                        const py::object& light, const py::object& progress) {
+    GrainFitRequest request = grain_fit_request(photos, mineral, stage_deg, plate, plate_slow_deg, mask, region, orientation, euler_zyz_deg);
+    std::tie(request.thickness_min_um, request.thickness_max_um) = thickness_range_um;
+    request.exposure_free = exposure_free;
+    request.candidates = candidates;
+    request.condenser_na = condenser_na;
+    request.polarizer_deg = polarizer_deg;
+    request.analyzer_deg = analyzer_deg;
+    request.light = light_argument(light);
+    const GrainFitPlan plan = plan_grain_fit(request, catalog());
+    const OrthoscopeFitResult result = with_progress(progress, [&](const ProgressCallback& callback) { return fit_grain(plan, callback); });
+    return grain_fit_dict(plan, result);
 }
 
 }  // namespace
@@ -110,6 +229,29 @@ Returns a dict: values, sigma (1 sigma, None where fixed or not determined), fre
 name); acceptable and verdict; rms_residual, explained_variance, pixels_used, pixels_saturated,
 iterations, candidates, warnings; model: the best fit's photo (float32, like photo). A photo given as an
 array carries no JPEG encoding: its systematic error is not checked (the command line's fit checks it).)");
+    module.def("fit_orthoscope", &fit_orthoscope, py::arg("photos"), py::kw_only(), py::arg("mineral"), py::arg("stage_deg") = 0.0,
+               py::arg("plate") = py::none(), py::arg("plate_slow_deg") = 45.0, py::arg("mask") = py::none(), py::arg("region") = py::none(),
+               py::arg("orientation") = "max-birefringence", py::arg("euler_zyz_deg") = py::none(),
+               py::arg("thickness_range_um") = std::pair(1.0, 200.0), py::arg("exposure_free") = false, py::arg("candidates") = 4,
+               py::arg("condenser_na") = 0.0, py::arg("polarizer_deg") = 0.0, py::arg("analyzer_deg") = 90.0, py::arg("light") = py::none(),
+               py::arg("progress") = py::none(),
+               R"(Fits a grain's thickness (and optic orientation) to its colours in crossed-polar photos (docs/fitting.md).
+
+photos: one photo or a list, each camera values 0 to 1, float, (height, width, 3), sRGB as a camera stores it.
+mineral: name or alias. stage_deg, plate ('gypsum', 'mica' or None), mask (array of the photo's size,
+  non-zero on the grain), region ((x, y, width, height) in pixels): one for all photos or a list of one per
+  photo; without mask or region the whole photo is the grain. plate_slow_deg: the plate's slow direction.
+orientation: 'max-birefringence' (the grain shows its highest colour; its angle is fitted), 'known' (give
+  euler_zyz_deg) or 'free' (only the retardation is determined). thickness_range_um: (min, max) searched.
+exposure_free: fit the exposure too. candidates: grid minima refined (1 to 20). condenser_na,
+  polarizer_deg, analyzer_deg, light (white: a Light or None) as for orthoscope().
+progress: called with the fraction done; return False to cancel. Ctrl-C cancels.
+
+Returns a dict: values, sigma (1 sigma, None where fixed or not determined), free, identifiable, by name
+(thickness_um, retardation_550nm in nm, birefringence_550nm, angle_0_deg … angle_2_deg, exposure) and
+angles_meaning; acceptable, verdict, rms_code (sRGB code units 0 to 1), thickness_lower_bound_um (free
+orientation), euler_zyz_deg of the fitted indicatrix, photos (measured and model colours, pixels used),
+candidates, warnings.)");
 }
 
 }  // namespace petroscope::python

@@ -3,6 +3,7 @@
 #include "petroscope/core/error.hpp"
 #include "petroscope/io/data_files.hpp"
 
+#include <algorithm>
 #include <cstring>
 
 namespace petroscope::python {
@@ -10,6 +11,21 @@ namespace petroscope::python {
 const MineralCatalog& catalog() {
     static const MineralCatalog minerals = load_mineral_catalog(minerals_directory());
     return minerals;
+}
+
+Image image_argument(const py::array& array, const std::string& argument) {
+    if (array.dtype().kind() != 'f') {
+        throw py::type_error(argument + ": expected float camera values 0 to 1 (for 8-bit codes, divide by 255), got dtype " +
+                             std::string(py::str(array.dtype())));
+    }
+    const bool gray = array.ndim() == 2;
+    if (!gray && !(array.ndim() == 3 && (array.shape(2) == 3 || array.shape(2) == 1))) {
+        throw py::value_error(argument + ": expected an array (height, width, 3) or (height, width)");
+    }
+    const auto values = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(array);
+    Image image(static_cast<int>(values.shape(1)), static_cast<int>(values.shape(0)), gray ? 1 : static_cast<int>(values.shape(2)));
+    std::copy(values.data(), values.data() + values.size(), image.pixels.begin());
+    return image;
 }
 
 py::array_t<float> to_numpy(const Image& image) {

@@ -27,6 +27,10 @@ namespace py = pybind11;
 /// The catalog of the repository's minerals (or of $PETROSCOPE_MINERALS), loaded at the first use.
 const MineralCatalog& catalog();
 
+/// Camera values 0 … 1 from a float array (height, width, 3) or (height, width) as an Image; TypeError or
+/// ValueError naming `argument` otherwise.
+Image image_argument(const py::array& array, const std::string& argument);
+
 /// A float32 array H × W × C, a copy of `image`.
 py::array_t<float> to_numpy(const Image& image);
 

@@ -32,3 +32,50 @@ def test_bad_photos_and_arguments_are_refused():
         petroscope.fit_conoscope(camera_photo(40.0, 64), thickness_um=-3.0)
     with pytest.raises(petroscope.Cancelled):
         petroscope.fit_conoscope(camera_photo(40.0, 64), progress=lambda fraction: False)
+
+
+def srgb_codes(linear):
+    """Linear sRGB as a camera stores it: the sRGB transfer curve (IEC 61966-2-1), codes 0 to 1."""
+    x = np.clip(linear, 0.0, 1.0)
+    return np.where(x <= 0.0031308, 12.92 * x, 1.055 * x ** (1 / 2.4) - 0.055).astype(np.float32)
+
+
+def grain_photos(thickness_um, euler_zyz_deg):
+    """A one-grain quartz section rendered between crossed polars at stage 0 and 30 and with the gypsum plate.
+    The stage turns the section: the photo's corners then show the empty field, so the fits read a region."""
+    section = petroscope.Section(np.zeros((24, 24), dtype=np.uint8), [petroscope.Grain(0, "quartz", euler_zyz_deg=euler_zyz_deg)],
+                                 thickness_um=thickness_um)
+    shots = [dict(stage_deg=0), dict(stage_deg=30), dict(stage_deg=0, plate="gypsum")]
+    return [srgb_codes(petroscope.orthoscope(section, **shot).image) for shot in shots]
+
+
+def test_a_grains_thickness_comes_back_from_its_colours():
+    photos = grain_photos(30.0, (20.0, 90.0, 0.0))  # the optic axis in the section's plane: maximum birefringence
+    fit = petroscope.fit_orthoscope(photos, mineral="quartz", stage_deg=[0, 30, 0], plate=[None, None, "gypsum"], region=(4, 4, 16, 16))
+    assert fit["acceptable"], fit["verdict"]
+    thickness, sigma = fit["values"]["thickness_um"], fit["sigma"]["thickness_um"]
+    assert abs(thickness - 30.0) < 1.5, fit
+    assert sigma is not None and sigma > 0
+    assert [photo["pixels"] for photo in fit["photos"]] == [256, 256, 256]
+    np.testing.assert_allclose(fit["photos"][0]["model_code"], fit["photos"][0]["mean_code"], atol=0.02)
+    known = petroscope.fit_orthoscope(photos, mineral="quartz", stage_deg=[0, 30, 0], plate=[None, None, "gypsum"],
+                                      region=(4, 4, 16, 16), orientation="known", euler_zyz_deg=(20.0, 90.0, 0.0))
+    assert abs(known["values"]["thickness_um"] - 30.0) < 0.01, known["verdict"]  # the model is the renderer's own
+
+
+def test_bad_grain_fits_are_refused():
+    photos = grain_photos(30.0, (0.0, 90.0, 0.0))
+    with pytest.raises(ValueError, match="stage_deg: give one value for all 3 photos or a list of one per photo \\(got 2\\)"):
+        petroscope.fit_orthoscope(photos, mineral="quartz", stage_deg=[0, 30])
+    with pytest.raises(ValueError, match="orientation 'known' needs the grain's Euler angles"):
+        petroscope.fit_orthoscope(photos, mineral="quartz", orientation="known")
+    with pytest.raises(ValueError, match="mask: expected an array \\(height, width\\) of the photo's size"):
+        petroscope.fit_orthoscope(photos, mineral="quartz", mask=np.ones((5, 5)))
+    with pytest.raises(ValueError, match="needs white light"):
+        petroscope.fit_orthoscope(photos, mineral="quartz", light=589.0)
+    with pytest.raises(ValueError, match="unknown mineral|not in the catalog|quarz"):
+        petroscope.fit_orthoscope(photos, mineral="quarz")
+    with pytest.raises(TypeError, match="photos\\[0\\]: expected float camera values"):
+        petroscope.fit_orthoscope([np.zeros((8, 8, 3), dtype=np.uint8)], mineral="quartz")
+    with pytest.raises(petroscope.Cancelled):
+        petroscope.fit_orthoscope(photos, mineral="quartz", progress=lambda fraction: False)

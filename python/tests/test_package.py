@@ -42,3 +42,12 @@ def test_every_public_function_explains_its_arguments():
         assert doc and len(doc) > 40, name
     assert "thickness_um" in petroscope.conoscope.__doc__
     assert "ValueError" in petroscope.mineral.__doc__
+
+
+def test_the_type_stubs_cover_every_public_name():
+    import ast
+    import pathlib
+
+    stubs = ast.parse(pathlib.Path(petroscope.__file__).with_name("__init__.pyi").read_text())
+    declared = {node.name for node in stubs.body if isinstance(node, (ast.FunctionDef, ast.ClassDef))}
+    assert set(petroscope.__all__) - declared == set()

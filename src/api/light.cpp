@@ -28,6 +28,10 @@ SpectralIntegrator white_light_integrator(const Light& light, const LightSource&
 
 }  // namespace
 
+SpectralIntegrator white_light_integrator(const Light& light) {
+    return white_light_integrator(light, load_light_source(light.illuminant));
+}
+
 DisplayImage render_in_light(const Light& light, const std::function<Image(const SpectralIntegrator*)>& render) {
     light.validate();
     if (light.monochromatic()) return {gray_image_to_rgb(render(nullptr), light.exposure), ""};

@@ -1,5 +1,6 @@
 #include "petroscope/fit/conoscope_fit.hpp"
 
+#include "cancel_between_iterations.hpp"
 #include "photo_cost.hpp"
 #include "photo_model.hpp"
 
@@ -132,19 +133,6 @@ std::unique_ptr<ceres::Problem> make_problem(const PhotoLevel& level, PhotoParam
     }
     return problem;
 }
-
-/// Lets the progress callback cancel a solve between its iterations.
-class CancelBetweenIterations final : public ceres::IterationCallback {
-public:
-    explicit CancelBetweenIterations(ProgressRelay& relay) : relay_(relay) {}
-    ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
-        relay_.poll();
-        return relay_.cancelled() ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
-    }
-
-private:
-    ProgressRelay& relay_;
-};
 
 /// Least squares on one level from `values`; returns the final Ceres cost and adds the iterations. Throws
 /// Cancelled when the progress callback asks to stop.

@@ -1,5 +1,7 @@
 #include "petroscope/fit/orthoscope_fit.hpp"
 
+#include "cancel_between_iterations.hpp"
+
 #include "petroscope/core/error.hpp"
 #include "petroscope/core/text.hpp"
 #include "petroscope/optics/orientation.hpp"
@@ -10,6 +12,7 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -141,8 +144,9 @@ double thickness_step_um(const GrainModel& model, const OrthoscopeFitOptions& op
     return std::max(0.015 / std::max(model.maximum_birefringence(), 1e-6), range / 3000.0);
 }
 
-/// The grid over orientation × thickness, every point's colour cost (Σ residual²).
-std::vector<GridPoint> global_search(const GrainModel& model, const OrthoscopeFitOptions& options) {
+/// The grid over orientation × thickness, every point's colour cost (Σ residual²); reports the first half
+/// of the fit's progress.
+std::vector<GridPoint> global_search(const GrainModel& model, const OrthoscopeFitOptions& options, ProgressRelay& relay) {
     const double range = options.thickness_max_um - options.thickness_min_um;
     const double step_um = thickness_step_um(model, options);
     const int thickness_steps = static_cast<int>(std::ceil(range / step_um)) + 1;
@@ -162,8 +166,10 @@ std::vector<GridPoint> global_search(const GrainModel& model, const OrthoscopeFi
             break;
     }
     std::vector<GridPoint> grid(orientations.size() * static_cast<std::size_t>(thickness_steps));
+    std::atomic<int> done{0};
 #pragma omp parallel for schedule(dynamic, 1)
     for (std::size_t o = 0; o < orientations.size(); ++o) {
+        if (relay.cancelled()) continue;
         const std::vector<GrainResponse> grain = model.responses(model.axes(orientations[o].data()));
         std::vector<double> spectrum;
         for (int s = 0; s < thickness_steps; ++s) {
@@ -174,7 +180,9 @@ std::vector<GridPoint> global_search(const GrainModel& model, const OrthoscopeFi
             }
             grid[o * static_cast<std::size_t>(thickness_steps) + static_cast<std::size_t>(s)] = {cost, thickness, orientations[o]};
         }
+        relay.report(0.5 * static_cast<double>(++done) / static_cast<double>(orientations.size()));
     }
+    relay.stop_if_cancelled();
     return grid;
 }
 
@@ -192,8 +200,9 @@ std::vector<GridPoint> starting_points(std::vector<GridPoint> grid, int count, d
     return chosen;
 }
 
-/// Refines one start with Ceres (Levenberg–Marquardt, central differences); returns Σ residual²/2.
-double refine(const GrainModel& model, const OrthoscopeFitOptions& options, std::array<double, kSlots>& parameters) {
+/// Refines one start with Ceres (Levenberg–Marquardt, central differences); returns Σ residual²/2. Throws
+/// Cancelled when the progress callback asks to stop.
+double refine(const GrainModel& model, const OrthoscopeFitOptions& options, std::array<double, kSlots>& parameters, ProgressRelay& relay) {
     auto* cost = new ceres::DynamicNumericDiffCostFunction<ColourCost, ceres::CENTRAL>(new ColourCost{&model});
     cost->AddParameterBlock(kSlots);
     cost->SetNumResiduals(static_cast<int>(3 * model.photo_count()));
@@ -215,8 +224,11 @@ double refine(const GrainModel& model, const OrthoscopeFitOptions& options, std:
     solver.function_tolerance = 1e-12;
     solver.parameter_tolerance = 1e-10;
     solver.logging_type = ceres::SILENT;
+    CancelBetweenIterations cancel(relay);
+    solver.callbacks.push_back(&cancel);
     ceres::Solver::Summary summary;
     ceres::Solve(solver, &problem, &summary);
+    relay.stop_if_cancelled();
     return summary.final_cost;
 }
 
@@ -385,7 +397,7 @@ GrainColour grain_colour(const Image& photo, const Image& mask, double saturated
 }
 
 OrthoscopeFitResult fit_orthoscope_grain(const std::vector<GrainPhoto>& photos, const Mineral& mineral, const OrthoscopeFitOptions& options,
-                                         const SpectralIntegrator& integrator) {
+                                         const SpectralIntegrator& integrator, const ProgressCallback& progress) {
     if (photos.empty()) throw InputError("no photo to fit");
     if (!(options.thickness_min_um > 0.0 && options.thickness_min_um < options.thickness_max_um && std::isfinite(options.thickness_max_um))) {
         throw InputError("the thickness range must be 0 < min < max (got " + format_significant(options.thickness_min_um, 6) + " to " +
@@ -403,8 +415,9 @@ OrthoscopeFitResult fit_orthoscope_grain(const std::vector<GrainPhoto>& photos, 
     }
     if (mineral.optical_class == OpticalClass::isotropic) throw InputError(mineral.name + " is isotropic: it stays dark between crossed polars");
     const GrainModel model(photos, mineral, options, integrator);
+    ProgressRelay relay(progress);
     const std::vector<GridPoint> starts =
-        starting_points(global_search(model, options), std::max(options.candidates, 1), thickness_step_um(model, options));
+        starting_points(global_search(model, options, relay), std::max(options.candidates, 1), thickness_step_um(model, options));
 
     OrthoscopeFitResult result;
     std::array<double, kSlots> best{};
@@ -412,7 +425,8 @@ OrthoscopeFitResult fit_orthoscope_grain(const std::vector<GrainPhoto>& photos, 
     const double residual_count = 3.0 * static_cast<double>(photos.size());
     for (const GridPoint& start : starts) {
         std::array<double, kSlots> parameters{start.thickness_um, start.angles_deg[0], start.angles_deg[1], start.angles_deg[2], options.exposure};
-        const double cost = refine(model, options, parameters);
+        const double cost = refine(model, options, parameters, relay);
+        relay.report(0.5 + 0.5 * static_cast<double>(result.candidates.size() + 1) / static_cast<double>(starts.size()));
         result.candidates.push_back({parameters[kThickness], {parameters[kAngle0], parameters[kAngle0 + 1], parameters[kAngle0 + 2]},
                                      std::sqrt(2.0 * cost / residual_count)});
         if (cost < best_cost) {
@@ -447,7 +461,7 @@ OrthoscopeFitResult fit_orthoscope_grain(const std::vector<GrainPhoto>& photos, 
     }
     if (!result.thickness_um.identifiable) {
         result.warnings.push_back("the photos do not determine the thickness (with the orientation free only the retardation t*dn is "
-                                  "measured); give the orientation (--euler-deg) or choose a grain of maximum birefringence");
+                                  "measured); give the orientation (its Euler angles) or choose a grain of maximum birefringence");
     }
     if (result.thickness_um.identifiable && result.candidates.size() > 1 && result.candidates[1].rms_code < 1.5 * result.candidates[0].rms_code &&
         std::abs(result.candidates[1].thickness_um - result.candidates[0].thickness_um) > 0.05 * result.candidates[0].thickness_um) {

@@ -38,6 +38,9 @@ struct DisplayImage {
 /// `render` returns one channel of transmission), and converts to linear sRGB, white balanced as asked.
 DisplayImage render_in_light(const Light& light, const std::function<Image(const SpectralIntegrator*)>& render);
 
+/// The colour integrator of white light: its wavelengths, the CIE 1931 observer, its illuminant.
+SpectralIntegrator white_light_integrator(const Light& light);
+
 /// Linear sRGB per unit transmission at each wavelength of the light: the colour integrator's weights
 /// through the display conversion in white light, (exposure, exposure, exposure) in monochromatic light.
 std::vector<Eigen::Vector3d> rgb_per_transmission(const Light& light);

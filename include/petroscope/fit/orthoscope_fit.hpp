@@ -4,6 +4,7 @@
 // The model is the orthoscope's own (microscope/polarizing_microscope.hpp, GrainResponse) in white light;
 // the method and its limits: docs/fitting.md.
 #include "petroscope/core/image.hpp"
+#include "petroscope/core/progress.hpp"
 #include "petroscope/fit/conoscope_fit.hpp"
 #include "petroscope/microscope/polarizing_microscope.hpp"
 #include "petroscope/minerals/mineral.hpp"
@@ -93,9 +94,10 @@ struct OrthoscopeFitResult {
     std::vector<std::string> warnings;
 };
 
-/// Fits the grain; `integrator` defines the white light, on the wavelengths of options.microscope. Throws InputError for unusable input (no photos, every photo grey, a thickness range
-/// that is not 0 < min < max, a wavelength grid unlike the integrator's).
-OrthoscopeFitResult fit_orthoscope_grain(const std::vector<GrainPhoto>& photos, const Mineral& mineral,
-                                         const OrthoscopeFitOptions& options, const SpectralIntegrator& integrator);
+/// Fits the grain; `integrator` defines the white light, on the wavelengths of options.microscope. Throws
+/// InputError for unusable input (no photos, every photo grey, a thickness range that is not 0 < min < max,
+/// a wavelength grid unlike the integrator's), Cancelled when `progress` says stop.
+OrthoscopeFitResult fit_orthoscope_grain(const std::vector<GrainPhoto>& photos, const Mineral& mineral, const OrthoscopeFitOptions& options,
+                                         const SpectralIntegrator& integrator, const ProgressCallback& progress = {});
 
 }  // namespace petroscope
