@@ -31,12 +31,7 @@ ConicalRequest conical_request(const std::string& crystal, double length_um, dou
 }
 
 Result conical(const ConicalRequest& request, const py::object& progress) {
-    const auto [plan, screen] = with_progress(progress, [&](const ProgressCallback& callback) {
-        ConicalPlan planned = plan_conical(request, catalog());
-        ConicalScreen rendered = render_conical_screen(planned, callback);
-        return std::pair{std::move(planned), std::move(rendered)};
-    });
-    return conical_result(plan, screen);
+    return compute(request, progress, &plan_conical, &render_conical_screen, &conical_result);
 }
 
 // The arguments of conical() and of the request a sweep steps.
@@ -80,7 +75,7 @@ ray optics: pinhole_um, filter_um (thickness of the filter holding the pinhole),
   the slab, screen_distance_um, rays (1 to 1e8; 48 bytes of memory a ray).
 polarization: 'unpolarized', 'linear:ANGLE' (degrees from +x), 'circular', 'circular:left', or a Stokes
   vector (S0, S1, S2, S3). size_px: 64 to 4096.
-progress: called with the fraction done (ray optics); return False to cancel. Ctrl-C cancels.
+progress: called with the fraction done; return False to cancel. Ctrl-C cancels.
 
 Returns a Result: image float32 (size_px, size_px, 3), three equal channels normalised to a brightest
 pixel of 1, centred on the ring centre; measurements: the rings' radii in µm.)");

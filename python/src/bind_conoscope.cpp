@@ -21,12 +21,7 @@ ConoscopeRequest conoscope_request(const std::string& mineral, double thickness_
 }
 
 Result conoscope(const ConoscopeRequest& request, const py::object& progress) {
-    const auto [plan, figure] = with_progress(progress, [&](const ProgressCallback& callback) {
-        ConoscopePlan planned = plan_conoscope(request, catalog());
-        ConoscopeFigure rendered = render_conoscope_figure(planned, callback);
-        return std::pair{std::move(planned), std::move(rendered)};
-    });
-    return conoscope_result(plan, figure);
+    return compute(request, progress, &plan_conoscope, &render_conoscope_figure, &conoscope_result);
 }
 
 // The arguments of conoscope() and of the request a sweep steps.

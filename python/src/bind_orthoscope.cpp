@@ -61,12 +61,7 @@ OrthoscopeRequest orthoscope_request(const ThinSection& section, bool analyzer_i
 }
 
 Result orthoscope(const OrthoscopeRequest& request, const py::object& progress) {
-    const auto [plan, image] = with_progress(progress, [&](const ProgressCallback& callback) {
-        OrthoscopePlan planned = plan_orthoscope(request, catalog());
-        OrthoscopeImage rendered = render_orthoscope_image(planned, callback);
-        return std::pair{std::move(planned), std::move(rendered)};
-    });
-    return orthoscope_result(plan, image);
+    return compute(request, progress, &plan_orthoscope, &render_orthoscope_image, &orthoscope_result);
 }
 
 // The arguments of orthoscope() and of the request a sweep steps.

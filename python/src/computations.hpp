@@ -9,6 +9,17 @@
 
 namespace petroscope::python {
 
+/// Plans and renders `request` with the GIL released (progress as with_progress), then makes its Result.
+template <class Request, class PlanFunction, class RenderFunction, class ResultFunction>
+Result compute(const Request& request, const py::object& progress, PlanFunction plan, RenderFunction render, ResultFunction result) {
+    const auto [planned, rendered] = with_progress(progress, [&](const ProgressCallback& callback) {
+        auto plan_made = plan(request, catalog());
+        auto image = render(plan_made, callback);
+        return std::pair{std::move(plan_made), std::move(image)};
+    });
+    return result(planned, rendered);
+}
+
 /// Hold the GIL to call these: they build Python objects.
 Result conoscope_result(const ConoscopePlan& plan, const ConoscopeFigure& figure);
 Result orthoscope_result(const OrthoscopePlan& plan, const OrthoscopeImage& image);

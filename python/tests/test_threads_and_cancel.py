@@ -53,6 +53,8 @@ def test_progress_reports_up_to_one_and_false_cancels():
     assert all(0.0 < f <= 1.0 for f in fractions)
     with pytest.raises(petroscope.Cancelled):
         petroscope.conoscope(size_px=64, light=589.3, progress=lambda fraction: False)
+    with pytest.raises(petroscope.Cancelled):  # wave optics: between the radii of the profile
+        petroscope.conical(size_px=64, progress=lambda fraction: False)
     with pytest.raises(ZeroDivisionError):  # the callback's own error comes back
         petroscope.conical(optics="ray", size_px=64, progress=lambda fraction: 1 / 0)
 

@@ -107,7 +107,7 @@ ConicalScreen render_conical_screen(const ConicalPlan& plan, const ProgressCallb
     ConicalScreen result;
     if (plan.request.optics == ConicalOptics::wave) {
         const double half_width = plan.half_width_um / plan.scale_um;  // in units of the beam scale
-        const ConicalProfile profile = conical_profile(plan.wave, half_width * std::numbers::sqrt2, 4 * size_px);
+        const ConicalProfile profile = conical_profile(plan.wave, half_width * std::numbers::sqrt2, 4 * size_px, progress);
         const ConicalRings rings = conical_rings(profile, plan.wave.rho0);
         result.linear_rgb = normalised_gray(conical_screen(profile, plan.request.stokes, size_px, half_width));
         result.measurements = ring_measurements(rings.outer_bright * plan.scale_um, rings.dark * plan.scale_um,

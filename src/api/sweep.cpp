@@ -1,6 +1,7 @@
 #include "petroscope/api/sweep.hpp"
 
 #include "petroscope/core/error.hpp"
+#include "petroscope/core/grid_index.hpp"
 #include "petroscope/core/text.hpp"
 
 #include <omp.h>
@@ -93,12 +94,11 @@ std::size_t SweepGrid::frame_count() const {
 }
 
 std::vector<double> SweepGrid::values_of(std::size_t frame) const {
+    std::vector<std::size_t> counts;
+    for (const SweepAxis& axis : axes) counts.push_back(axis.values.size());
+    const std::vector<std::size_t> indices = grid_indices(frame, counts);
     std::vector<double> values(axes.size());
-    for (std::size_t a = axes.size(); a-- > 0;) {
-        const std::size_t count = axes[a].values.size();
-        values[a] = axes[a].values[frame % count];
-        frame /= count;
-    }
+    for (std::size_t a = 0; a < axes.size(); ++a) values[a] = axes[a].values[indices[a]];
     return values;
 }
 

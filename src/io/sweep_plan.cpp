@@ -1,6 +1,7 @@
 #include "petroscope/io/sweep_plan.hpp"
 
 #include "petroscope/core/error.hpp"
+#include "petroscope/core/grid_index.hpp"
 #include "petroscope/core/text.hpp"
 #include "petroscope/io/json_reader.hpp"
 
@@ -119,12 +120,11 @@ std::size_t SweepPlan::frame_count() const {
 }
 
 std::vector<std::string> SweepPlan::values_of(std::size_t frame) const {
+    std::vector<std::size_t> counts;
+    for (const SweepParameter& parameter : parameters) counts.push_back(parameter.values.size());
+    const std::vector<std::size_t> indices = grid_indices(frame, counts);
     std::vector<std::string> values(parameters.size());
-    for (std::size_t k = parameters.size(); k-- > 0;) {
-        const std::size_t count = parameters[k].values.size();
-        values[k] = parameters[k].values[frame % count];
-        frame /= count;
-    }
+    for (std::size_t k = 0; k < parameters.size(); ++k) values[k] = parameters[k].values[indices[k]];
     return values;
 }
 

@@ -1,5 +1,6 @@
 #include "petroscope/microscope/polarizing_microscope.hpp"
 
+#include "petroscope/core/angles.hpp"
 #include "petroscope/core/error.hpp"
 #include "petroscope/core/text.hpp"
 
@@ -10,8 +11,6 @@
 
 namespace petroscope {
 namespace {
-
-constexpr double kDegree = std::numbers::pi / 180.0;
 
 /// Retardation Γ = (n_slow − n_fast)·d of a plate whose slow and fast principal axes are `slow`, `fast`.
 double birefringence(const Mineral& mineral, int slow, int fast, double wavelength_nm) {

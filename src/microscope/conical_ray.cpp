@@ -1,5 +1,6 @@
 #include "petroscope/microscope/conical_ray.hpp"
 
+#include "petroscope/core/angles.hpp"
 #include "petroscope/core/error.hpp"
 #include "petroscope/optics/interface.hpp"
 #include "petroscope/optics/orientation.hpp"
@@ -14,8 +15,6 @@
 
 namespace petroscope {
 namespace {
-
-constexpr double kDegree = std::numbers::pi / 180.0;
 
 Eigen::Vector2d uniform_in_disc(std::mt19937_64& rng, double radius) {
     std::uniform_real_distribution<double> unit(0.0, 1.0);

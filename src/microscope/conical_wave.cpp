@@ -4,6 +4,7 @@
 #include "petroscope/core/text.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -206,8 +207,8 @@ const GaussLegendre& gauss_legendre() {
 }
 
 // The P nodes shared by every ρ of a profile, ascending, with the ρ-independent factors of the integrands:
-// coefficient0 = w P a(P) e^{−iZP²/2} cos(ρ₀P), coefficient1 = w P a(P) e^{−iZP²/2} sin(ρ₀P) (physics notes
-// §7), split into real and imaginary parts for the vectorised sums.
+// coefficient0 = w P a(P) e^{−iZP²/2} cos(ρ₀P), coefficient1 = w P a(P) e^{−iZP²/2} sin(ρ₀P) (docs/theory.md
+// §8), split into real and imaginary parts for the vectorised sums.
 struct SpectralNodes {
     std::vector<double> p, c0_re, c0_im, c1_re, c1_im;
 };
@@ -306,7 +307,7 @@ void check(bool condition, const std::string& what) {
 
 double intensity(std::complex<double> b0, std::complex<double> b1, const Eigen::Vector4d& stokes, double cos_phi,
                  double sin_phi) {
-    // I = S0(|B₀|² + |B₁|²) + 2 Re(B₀B₁*)(S1 cos φ + S2 sin φ) (physics notes §7).
+    // I = S0(|B₀|² + |B₁|²) + 2 Re(B₀B₁*)(S1 cos φ + S2 sin φ) (docs/theory.md §8).
     return stokes[0] * (std::norm(b0) + std::norm(b1)) +
            2.0 * (b0 * std::conj(b1)).real() * (stokes[1] * cos_phi + stokes[2] * sin_phi);
 }
@@ -336,7 +337,7 @@ std::pair<std::complex<double>, std::complex<double>> ConicalProfile::at(double 
     return {b0[i] + t * (b0[i + 1] - b0[i]), b1[i] + t * (b1[i + 1] - b1[i])};
 }
 
-ConicalProfile conical_profile(const ConicalWaveParameters& parameters, double rho_max, int samples) {
+ConicalProfile conical_profile(const ConicalWaveParameters& parameters, double rho_max, int samples, const ProgressCallback& progress) {
     check(std::isfinite(parameters.rho0) && parameters.rho0 >= 0.0,
           "ring radius rho0 must be a finite number >= 0 (got " + format_number(parameters.rho0) + ")");
     check(std::isfinite(parameters.z), "observation distance Z must be finite");
@@ -350,12 +351,17 @@ ConicalProfile conical_profile(const ConicalWaveParameters& parameters, double r
     profile.rho.resize(samples);
     profile.b0.resize(samples);
     profile.b1.resize(samples);
+    ProgressRelay relay(progress);
+    std::atomic<int> done{0};
 #pragma omp parallel for schedule(dynamic, 8)
     for (int i = 0; i < samples; ++i) {
+        if (relay.cancelled()) continue;
         const double rho = rho_max * i / (samples - 1);
         profile.rho[i] = rho;
         std::tie(profile.b0[i], profile.b1[i]) = hankel_sums(nodes, rho);
+        relay.count_done(done, samples);
     }
+    relay.stop_if_cancelled();
     return profile;
 }
 

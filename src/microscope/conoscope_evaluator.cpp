@@ -3,6 +3,8 @@
 #include "interference.hpp"
 
 #include "petroscope/core/error.hpp"
+
+#include "petroscope/core/angles.hpp"
 #include "petroscope/optics/orientation.hpp"
 
 #include <cmath>
@@ -12,10 +14,6 @@
 
 namespace petroscope::detail {
 namespace {
-
-constexpr double kDegree = std::numbers::pi / 180.0;
-
-Eigen::Vector2d unit_at(double angle_deg) { return {std::cos(angle_deg * kDegree), std::sin(angle_deg * kDegree)}; }
 
 std::vector<BinormalFrame> frames_for(const ConoscopeSettings& settings, const PrincipalIndexFunction& principal_n) {
     const Eigen::Matrix3d axes = rotation_z_deg(settings.stage_deg) * settings.crystal_axes;

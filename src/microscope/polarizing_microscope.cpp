@@ -1,5 +1,6 @@
 #include "petroscope/microscope/polarizing_microscope.hpp"
 
+#include "petroscope/core/angles.hpp"
 #include "petroscope/core/error.hpp"
 #include "petroscope/core/text.hpp"
 #include "petroscope/optics/orientation.hpp"
@@ -10,10 +11,6 @@
 
 namespace petroscope {
 namespace {
-
-constexpr double kDegree = std::numbers::pi / 180.0;
-
-Eigen::Vector2d unit_at(double angle_deg) { return {std::cos(angle_deg * kDegree), std::sin(angle_deg * kDegree)}; }
 
 /// The lab-frame vectors of the (s, p) basis of a direction: columns ŝ and ρ̂ (layer_stack.hpp).
 Eigen::Matrix2d sp_to_lab(const TangentialWavevector& direction) {

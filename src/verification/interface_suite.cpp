@@ -1,5 +1,7 @@
 #include "petroscope/verification/interface_suite.hpp"
 
+#include "petroscope/core/angles.hpp"
+
 #include "petroscope/optics/berreman.hpp"
 #include "petroscope/optics/indicatrix.hpp"
 #include "petroscope/optics/interface.hpp"
@@ -14,7 +16,6 @@
 namespace petroscope {
 namespace {
 
-constexpr double kDegree = std::numbers::pi / 180.0;
 using Kind = InterfaceWave::Kind;
 
 InterfaceIncidence unpolarized(const Eigen::Vector3d& direction) {

@@ -1,13 +1,14 @@
 #pragma once
 // Internal conical refraction in wave optics: the paraxial diffraction integrals of Belsky & Khapalyuk
 // (Opt. Spectrosc. 44, 436 (1978)) in the form of Berry (J. Opt. A 6, 289 (2004)) and Berry & Jeffrey
-// (Prog. Opt. 50, 13 (2007)), for a beam along a binormal of a biaxial slab (physics notes §7).
+// (Prog. Opt. 50, 13 (2007)), for a beam along a binormal of a biaxial slab (docs/theory.md §8).
 //
 // Units: transverse lengths are in units of the beam scale w (the Gaussian's E(r) = exp(−r²/2w²), or the
 // pinhole's radius), so ρ = r/w and ρ₀ = R₀/w; Z = [z − z_waist − l(1 − 1/nβ)]/(k₀w²). Fields are in
 // units of the incident field at the centre of the beam: B₀ = exp(−ρ²/2) for ρ₀ = Z = 0 (Gaussian), and
 // intensities in units of the incident intensity there, so that the incident beam carries π·S₀ w².
 #include "petroscope/core/image.hpp"
+#include "petroscope/core/progress.hpp"
 
 #include <Eigen/Core>
 
@@ -17,7 +18,7 @@
 
 namespace petroscope {
 
-/// Paraxial conical diffraction behind a biaxial slab cut ⟂ a binormal (physics notes §7).
+/// Paraxial conical diffraction behind a biaxial slab cut ⟂ a binormal (docs/theory.md §8).
 /// gaussian: E(r) = exp(−r²/2w²), angular spectrum a(P) = exp(−P²/2).
 /// pinhole: a uniform disc of radius w whose edge is softened by a Gaussian of rms width
 /// σ = kConicalPinholeEdgeWidth·w (the disc convolved with it): a(P) = exp(−σ²P²/2)·J₁(P)/P. The softening
@@ -32,7 +33,7 @@ inline constexpr double kConicalPinholeEdgeWidth = 0.05;
 struct ConicalWaveParameters {
     ConicalBeam beam = ConicalBeam::gaussian;
     double rho0 = 20.0;   // ρ₀ = R₀/w: ring radius in units of the beam scale w
-    double z = 0.0;       // Z: dimensionless observation distance (physics notes §7); 0 = focal image plane
+    double z = 0.0;       // Z: dimensionless observation distance (docs/theory.md §8); 0 = focal image plane
 };
 
 /// B₀(ρ), B₁(ρ) sampled at ρ = i·rho_max/(samples − 1), i = 0 … samples − 1.
@@ -48,11 +49,11 @@ struct ConicalProfile {
 /// (absolute error below 1e-12). Cost ∝ samples × (ρ₀ + rho_max + |Z|P_max/2)·P_max with P_max = 9
 /// (Gaussian) or 9/σ (pinhole). Parallel over the samples (OpenMP). Throws InputError for ρ₀ < 0,
 /// rho_max ≤ 0, samples < 2, non-finite values, or more than 1e6 nodes (|Z| ≳ 1.5e4 for the Gaussian,
-/// ≳ 35 for the pinhole).
-ConicalProfile conical_profile(const ConicalWaveParameters& parameters, double rho_max, int samples);
+/// ≳ 35 for the pinhole). `progress` hears the fraction of samples done; Cancelled when it says stop.
+ConicalProfile conical_profile(const ConicalWaveParameters& parameters, double rho_max, int samples, const ProgressCallback& progress = {});
 
 /// Intensity for incident Stokes vector (S0, S1, S2, S3) at (ρ, φ), φ from +x (the direction of the ring
-/// centre's offset): I = S0(|B₀|² + |B₁|²) + 2 Re(B₀B₁*)(S1 cos φ + S2 sin φ) (physics notes §7), in units
+/// centre's offset): I = S0(|B₀|² + |B₁|²) + 2 Re(B₀B₁*)(S1 cos φ + S2 sin φ) (docs/theory.md §8), in units
 /// of the incident intensity at the beam's centre per unit S0.
 double conical_intensity(const ConicalProfile& profile, const Eigen::Vector4d& stokes, double rho, double phi);
 
