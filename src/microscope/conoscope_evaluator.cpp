@@ -63,20 +63,14 @@ ConoscopeEvaluator::ConoscopeEvaluator(const ConoscopeSettings& settings, const 
     if (frames_.size() == 1) monochromatic_samples_ = samples_of(frames_, k0_thickness_, settings.surround_n, kMonochromaticBatch);
     if (settings.plate) {
         for (const double wavelength_nm : settings.wavelengths_nm) plate_jones_lab_.push_back(plate_jones_lab(*settings.plate, wavelength_nm, false));
+        set_plate(spectral_samples_, plate_jones_lab_, polars_);
+        if (monochromatic_samples_) set_plate(*monochromatic_samples_, plate_jones_lab_, polars_);  // one wavelength: repeated
     }
 }
 
 void ConoscopeEvaluator::spectral_pair(const Eigen::Vector2d& xi, KernelScratch& scratch, bool continues_row,
                                        double* out_plus, double* out_minus) const {
     const std::size_t count = spectral_samples_.size();
-    if (!plate_jones_lab_.empty()) {  // the vectorised kernel knows real analyzers only
-        for (std::size_t w = 0; w < count; ++w) {
-            const std::array<double, 2> reference = reference_pair(w, xi);
-            out_plus[w] = reference[0];
-            out_minus[w] = reference[1];
-        }
-        return;
-    }
     if (scratch.failed.size() != spectral_samples_.padded_size()) {
         scratch.resize(spectral_samples_.padded_size());
         scratch.warm_ready = false;
@@ -121,14 +115,6 @@ void ConoscopeEvaluator::spectral_terms(const Eigen::Vector2d& xi, KernelScratch
 void ConoscopeEvaluator::monochromatic_pairs(const std::vector<Eigen::Vector2d>& xis, KernelScratch& scratch,
                                              double* out_plus, double* out_minus) const {
     if (xis.empty()) return;
-    if (!plate_jones_lab_.empty()) {
-        for (std::size_t k = 0; k < xis.size(); ++k) {
-            const std::array<double, 2> reference = reference_pair(0, xis[k]);
-            out_plus[k] = reference[0];
-            out_minus[k] = reference[1];
-        }
-        return;
-    }
     // A shorter batch uses the first samples; the rest of the arrays repeat its last direction.
     const SampleCrystal& samples = *monochromatic_samples_;
     if (scratch.failed.size() != samples.padded_size()) scratch.resize(samples.padded_size());

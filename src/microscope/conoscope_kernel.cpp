@@ -207,8 +207,10 @@ void solve_vibrations(const SampleCrystal& crystal, KernelScratch& scratch) {
 
 // Single-pass transmission for one side from its forward modes and the other side's (time-reversed:
 // the backward modes), after optics/slab.cpp's slab_transfer and the conoscope's analyzed intensity.
-template <bool AnalyzerIn, bool Terms, int Side>
+// With a plate, the effective analyzers of SampleCrystal::plate_analyzer take the analyzer's place.
+template <bool AnalyzerIn, bool Terms, bool Plate, int Side>
 void side_transmission(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch) {
+    static_assert(!(Plate && Terms), "interference terms are defined without a plate only");
     constexpr int other = 1 - Side;
     const double *rho_x0 = scratch.rho_x.data(), *rho_y0 = scratch.rho_y.data(), *reversal = scratch.reversal.data();
     const double *xi_x0 = scratch.xi_x.data(), *xi_y0 = scratch.xi_y.data();
@@ -225,6 +227,9 @@ void side_transmission(const SampleCrystal& crystal, const PolarizerPair& polars
     double *mean = scratch.mean[Side].data(), *modulation = scratch.modulation[Side].data();
     const double pol_x = polars.polarizer.x(), pol_y = polars.polarizer.y();
     const double ana_x = polars.analyzer.x(), ana_y = polars.analyzer.y();
+    const auto& plate = crystal.plate_analyzer;
+    const double *b0_re_x = plate[0][0].data(), *b0_re_y = plate[0][1].data(), *b0_im_x = plate[0][2].data(), *b0_im_y = plate[0][3].data();
+    const double *b1_re_x = plate[1][0].data(), *b1_re_y = plate[1][1].data(), *b1_im_x = plate[1][2].data(), *b1_im_y = plate[1][3].data();
     const int count = static_cast<int>(crystal.padded_size());
 #pragma omp simd
     for (int i = 0; i < count; ++i) {
@@ -264,7 +269,21 @@ void side_transmission(const SampleCrystal& crystal, const PolarizerPair& polars
         const double e00 = f00 - (bp00 * r00 + bp01 * r10), e01 = f01 - (bp00 * r01 + bp01 * r11);
         const double e10 = f10 - (bp10 * r00 + bp11 * r10), e11 = f11 - (bp10 * r01 + bp11 * r11);
         const double sin2 = sin_squared(0.5 * k0_thickness[i] * (qf[i] - qs[i]));
-        if constexpr (AnalyzerIn) {
+        if constexpr (Plate) {
+            // |bᵀE|² for E = Σₘ Eₘ e^{iφₘ} (Eₘ real), b = b_re + i b_im: with αₘ = b_re·Eₘ, βₘ = b_im·Eₘ and
+            // δ = φ₀ − φ₁ it is Σₘ(αₘ² + βₘ²) + 2(α₀α₁ + β₀β₁)cos δ + 2(α₀β₁ − β₀α₁)sin δ.
+            const double cos_delta = 1.0 - 2.0 * sin2, sin_delta = sine(k0_thickness[i] * (qf[i] - qs[i]));
+            const auto analyzed = [&](double re_x, double re_y, double im_x, double im_y) {
+                const double re_s = re_x * s_x + re_y * s_y, re_p = re_x * rho_x + re_y * rho_y;
+                const double im_s = im_x * s_x + im_y * s_y, im_p = im_x * rho_x + im_y * rho_y;
+                const double alpha0 = (re_s * e00 + re_p * e10) * t0, alpha1 = (re_s * e01 + re_p * e11) * t1;
+                const double beta0 = (im_s * e00 + im_p * e10) * t0, beta1 = (im_s * e01 + im_p * e11) * t1;
+                return alpha0 * alpha0 + alpha1 * alpha1 + beta0 * beta0 + beta1 * beta1 +
+                       2.0 * (alpha0 * alpha1 + beta0 * beta1) * cos_delta + 2.0 * (alpha0 * beta1 - beta0 * alpha1) * sin_delta;
+            };
+            out[i] = analyzed(b0_re_x[i], b0_re_y[i], b0_im_x[i], b0_im_y[i]);
+            if constexpr (!AnalyzerIn) out[i] += analyzed(b1_re_x[i], b1_re_y[i], b1_im_x[i], b1_im_y[i]);
+        } else if constexpr (AnalyzerIn) {
             const double u0 = (a_s * e00 + a_p * e10) * t0, u1 = (a_s * e01 + a_p * e11) * t1;
             out[i] = pair_intensity(u0, u1, sin2);
             if constexpr (Terms) {
@@ -294,14 +313,14 @@ void solve_side(const SampleCrystal& crystal, KernelScratch& scratch, bool warm)
     solve_vibrations<1, Side>(crystal, scratch);
 }
 
-template <bool Terms>
+template <bool Terms, bool Plate>
 void transmission_of_both_sides(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch) {
     if (polars.analyzer_in) {
-        side_transmission<true, Terms, 0>(crystal, polars, scratch);
-        side_transmission<true, Terms, 1>(crystal, polars, scratch);
+        side_transmission<true, Terms, Plate, 0>(crystal, polars, scratch);
+        side_transmission<true, Terms, Plate, 1>(crystal, polars, scratch);
     } else {
-        side_transmission<false, Terms, 0>(crystal, polars, scratch);
-        side_transmission<false, Terms, 1>(crystal, polars, scratch);
+        side_transmission<false, Terms, Plate, 0>(crystal, polars, scratch);
+        side_transmission<false, Terms, Plate, 1>(crystal, polars, scratch);
     }
 }
 
@@ -335,6 +354,25 @@ SampleCrystal::SampleCrystal(const std::vector<const BinormalFrame*>& frames, co
     }
 }
 
+void set_plate(SampleCrystal& crystal, const std::vector<Eigen::Matrix2cd>& jones, const PolarizerPair& polars) {
+    crystal.plate_analyzers = polars.analyzer_in ? 1 : 2;
+    for (int k = 0; k < 2; ++k) {
+        for (auto& component : crystal.plate_analyzer[static_cast<std::size_t>(k)]) component.clear();
+    }
+    for (std::size_t j = 0; j < crystal.padded_size(); ++j) {
+        const Eigen::Matrix2cd& plate = jones[std::min(j, jones.size() - 1)];
+        // b = Jᵀa with the analyzer; without it the rows of J (the second used only then).
+        const std::array<Eigen::Vector2cd, 2> analyzers =
+            polars.analyzer_in ? std::array<Eigen::Vector2cd, 2>{plate.transpose() * polars.analyzer.cast<std::complex<double>>(), Eigen::Vector2cd::Zero()}
+                               : std::array<Eigen::Vector2cd, 2>{plate.row(0).transpose(), plate.row(1).transpose()};
+        for (std::size_t k = 0; k < 2; ++k) {
+            const Eigen::Vector2cd& b = analyzers[k];
+            const std::array<double, 4> parts{b.x().real(), b.y().real(), b.x().imag(), b.y().imag()};
+            for (std::size_t c = 0; c < 4; ++c) crystal.plate_analyzer[k][c].push_back(parts[c]);
+        }
+    }
+}
+
 void KernelScratch::resize(std::size_t padded_samples) {
     for (auto* array : {&xi_x, &xi_y, &rho_x, &rho_y, &reversal}) array->resize(padded_samples);
     for (auto* set : {&q_start, &q, &dq_dxi_x, &dq_dxi_y}) {
@@ -364,9 +402,11 @@ bool run_kernel(const SampleCrystal& crystal, const PolarizerPair& polars, Kerne
         solve_side<false, 1>(crystal, scratch, warm);
     }
     if (terms) {
-        transmission_of_both_sides<true>(crystal, polars, scratch);
+        transmission_of_both_sides<true, false>(crystal, polars, scratch);
+    } else if (crystal.plate_analyzers > 0) {
+        transmission_of_both_sides<false, true>(crystal, polars, scratch);
     } else {
-        transmission_of_both_sides<false>(crystal, polars, scratch);
+        transmission_of_both_sides<false, false>(crystal, polars, scratch);
     }
     // A sample needs all four modes (each side's backward modes are the other side's forward ones).
     const int count = static_cast<int>(crystal.size());

@@ -36,6 +36,13 @@ struct SampleCrystal {
     std::array<std::vector<double>, 3> binormal_1, binormal_2;
     std::array<std::vector<double>, 6> impermeability;  // η_xx, η_yy, η_zz, η_xy, η_xz, η_yz
     std::vector<double> surround_n, k0_thickness;
+
+    /// An accessory plate after the crystal makes the analyzed intensity |bᵀE| with a complex effective
+    /// analyzer b (E the lab field leaving the crystal): b = Jᵀa with the analyzer a, or each row of J
+    /// without one (|JE|² = Σ_rows |J_r·E|²), J the plate's Jones matrix at the sample's wavelength.
+    /// plate_analyzers: 0 without a plate, else 1 or 2; plate_analyzer[k]: Re b_x, Re b_y, Im b_x, Im b_y.
+    int plate_analyzers = 0;
+    std::array<std::array<std::vector<double>, 4>, 2> plate_analyzer;
 };
 
 /// The polarizer and analyzer.
@@ -44,6 +51,9 @@ struct PolarizerPair {
     Eigen::Vector2d analyzer;
     bool analyzer_in = true;
 };
+
+/// Puts a plate after `crystal`: `jones` per sample (its size() of them; the padding repeats the last).
+void set_plate(SampleCrystal& crystal, const std::vector<Eigen::Matrix2cd>& jones, const PolarizerPair& polars);
 
 /// Per-sample arrays reused across batches (one set per thread). Index [side]: 0 for ξ, 1 for −ξ.
 struct KernelScratch {

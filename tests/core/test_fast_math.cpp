@@ -1,4 +1,4 @@
-// The vectorisable sin² against the C library's sin, over the range of interference phases.
+// The vectorisable sin² and sin against the C library's sin, over the range of interference phases.
 #include "petroscope/core/fast_math.hpp"
 
 #include <gtest/gtest.h>
@@ -23,6 +23,22 @@ TEST(FastMath, SinSquaredMatchesTheLibrarySine) {
     EXPECT_LT(worst, 1.0);
     EXPECT_EQ(sin_squared(0.0), 0.0);
     EXPECT_NEAR(sin_squared(M_PI / 2), 1.0, 1e-16);
+}
+
+TEST(FastMath, SineMatchesTheLibrarySineWithItsSign) {
+    std::mt19937_64 rng(10);
+    std::uniform_real_distribution<double> exponent(-8.0, 5.0), sign(-1.0, 1.0);
+    double worst = 0.0;
+    for (int i = 0; i < 1000000; ++i) {
+        const double x = std::copysign(std::pow(10.0, exponent(rng)), sign(rng));
+        worst = std::max(worst, std::abs(sine(x) - std::sin(x)) / (2e-16 + 2e-16 * std::abs(x)));
+    }
+    EXPECT_LT(worst, 1.0);
+    EXPECT_EQ(sine(0.0), 0.0);
+    EXPECT_NEAR(sine(M_PI / 2), 1.0, 1e-16);
+    EXPECT_NEAR(sine(-M_PI / 2), -1.0, 1e-16);
+    EXPECT_NEAR(sine(3 * M_PI / 2), -1.0, 1e-15);
+    EXPECT_NEAR(sine(5 * M_PI / 2), 1.0, 1e-15);
 }
 
 }  // namespace

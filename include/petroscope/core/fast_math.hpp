@@ -5,10 +5,14 @@
 
 namespace petroscope {
 
-/// sin²(x) for |x| < 2²⁰·π: x is reduced by multiples of π with π split in two parts (Cody & Waite
-/// 1980; the split of fdlibm's __ieee754_rem_pio2), then sin is the Taylor series to degree 23 on
-/// [−π/2, π/2] (truncation < 1e-20). sin² has period π, so no quadrant bookkeeping is needed.
-inline double sin_squared(double x) {
+namespace fast_math_detail {
+
+/// x = kπ + r with |r| ≤ π/2: sin r and k. π is split in two parts (Cody & Waite 1980; the split of fdlibm's
+/// __ieee754_rem_pio2), then sin r is the Taylor series to degree 23 (truncation < 1e-20).
+struct ReducedSine {
+    double sine_r, k;
+};
+inline ReducedSine reduced_sine(double x) {
     constexpr double inverse_pi = 0.318309886183790671538;
     constexpr double pi_high = 3.14159265346825122833e+00;   // first 33 bits of π: k·pi_high is exact
     constexpr double pi_low = 1.21542010130123844986e-10;    // π − pi_high
@@ -31,8 +35,22 @@ inline double sin_squared(double x) {
     series = series * r2 + 1.0 / 120.0;
     series = series * r2 - 1.0 / 6.0;
     series = series * r2 + 1.0;
-    const double sine = r * series;
+    return {r * series, k};
+}
+
+}  // namespace fast_math_detail
+
+/// sin²(x) for |x| < 2²⁰·π. sin² has period π, so no quadrant bookkeeping is needed.
+inline double sin_squared(double x) {
+    const double sine = fast_math_detail::reduced_sine(x).sine_r;
     return sine * sine;
+}
+
+/// sin(x) for |x| < 2²⁰·π: sin(kπ + r) = (−1)ᵏ sin r.
+inline double sine(double x) {
+    const auto [sine_r, k] = fast_math_detail::reduced_sine(x);
+    const double odd = k - 2.0 * std::floor(0.5 * k);  // 0 or 1
+    return (1.0 - 2.0 * odd) * sine_r;
 }
 
 }  // namespace petroscope
