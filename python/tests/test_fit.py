@@ -54,13 +54,13 @@ def test_a_grains_thickness_comes_back_from_its_colours():
     fit = petroscope.fit_orthoscope(photos, mineral="quartz", stage_deg=[0, 30, 0], plate=[None, None, "gypsum"], region=(4, 4, 16, 16))
     assert fit["acceptable"], fit["verdict"]
     thickness, sigma = fit["values"]["thickness_um"], fit["sigma"]["thickness_um"]
-    assert abs(thickness - 30.0) < 1.5, fit
+    assert abs(thickness - 30.0) < 0.01, fit  # the model is the renderer's own: only rounding separates them
     assert sigma is not None and sigma > 0
     assert [photo["pixels"] for photo in fit["photos"]] == [256, 256, 256]
     np.testing.assert_allclose(fit["photos"][0]["model_code"], fit["photos"][0]["mean_code"], atol=0.02)
     known = petroscope.fit_orthoscope(photos, mineral="quartz", stage_deg=[0, 30, 0], plate=[None, None, "gypsum"],
                                       region=(4, 4, 16, 16), orientation="known", euler_zyz_deg=(20.0, 90.0, 0.0))
-    assert abs(known["values"]["thickness_um"] - 30.0) < 0.01, known["verdict"]  # the model is the renderer's own
+    assert abs(known["values"]["thickness_um"] - 30.0) < 0.01, known["verdict"]
 
 
 def test_bad_grain_fits_are_refused():
