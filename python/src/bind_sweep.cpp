@@ -88,8 +88,7 @@ void def_sweep(py::module_& module, std::string_view kind, PlanFunction plan, Re
 
 void bind_sweep(py::module_& module) {
     def_sweep<ConoscopeRequest>(module, "conoscope", &plan_conoscope, &render_conoscope_figure, &conoscope_result);
-    def_sweep<OrthoscopeRequest>(module, "orthoscope", &plan_orthoscope,
-                                 &render_orthoscope_image, &orthoscope_result);
+    def_sweep<OrthoscopeRequest>(module, "orthoscope", &plan_orthoscope, &render_orthoscope_image, &orthoscope_result);
     def_sweep<ConicalRequest>(module, "conical", &plan_conical, &render_conical_screen, &conical_result);
     module.def("_sweep_fields", [](const std::string& kind) {
         std::vector<std::string> names;
