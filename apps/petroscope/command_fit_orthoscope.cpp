@@ -183,7 +183,7 @@ GrainFitRequest grain_fit_request(const GrainFitOptions& options) {
 
 void run_fit_orthoscope(const GrainFitOptions& options, const std::string& minerals_dir) {
     const MineralCatalog catalog = load_mineral_catalog(minerals_directory(minerals_dir));
-    with_option("--mineral", [&]() -> const Mineral& { return catalog.find(options.mineral); });
+    with_option("--mineral", [&]() -> const Mineral& { return catalog.find(options.mineral); });  // a message naming the option
     const GrainFitPlan plan = plan_grain_fit(grain_fit_request(options), catalog);
     const OrthoscopeFitOptions& fit = plan.options;
     const std::vector<GrainPhoto>& photos = plan.photos;

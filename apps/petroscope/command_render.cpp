@@ -118,9 +118,8 @@ PreparedFrame RenderOptions::prepare(FrameContext& context) const {
         const SceneImage image = render_scene_image(*scene, *spectrum, settings, exposure, progress);
         const std::vector<double>& relative_errors = image.relative_errors;
         const Image& rgb = image.linear_rgb;
-        const Image& xyz = image.linear_rgb;
         const RenderStatistics& s = image.result.statistics;
-        RenderedFrame frame{rgb, sidecar, std::to_string(xyz.width) + "x" + std::to_string(xyz.height) + ", " + std::to_string(settings.samples_per_pixel) + " spp"};
+        RenderedFrame frame{rgb, sidecar, std::to_string(rgb.width) + "x" + std::to_string(rgb.height) + ", " + std::to_string(settings.samples_per_pixel) + " spp"};
         frame.sidecar["statistics"] = {{"paths", s.paths},
                                        {"paths_per_second", static_cast<double>(s.paths) / std::max(s.seconds, 1e-9)},
                                        {"crystal_interactions", s.crystal_interactions},

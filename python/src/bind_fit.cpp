@@ -95,6 +95,18 @@ std::vector<py::object> per_photo(const py::object& value, std::size_t photos, c
     return items;
 }
 
+// One photo's value of a per-photo argument as T; TypeError naming the argument and what it takes.
+template <class T>
+T photo_value(const py::object& value, const std::string& argument, const std::string& expected) {
+    if (!py::isinstance<py::bool_>(value)) {
+        try {
+            return value.cast<T>();
+        } catch (const py::cast_error&) {
+        }
+    }
+    throw py::type_error(argument + ": expected " + expected + ", got " + std::string(py::str(py::type::of(value).attr("__name__"))));
+}
+
 // The grain's pixels in a photo: a mask array (non-zero: the grain), a region (x, y, width, height) or the whole photo.
 Image grain_mask(const Image& photo, const py::object& mask, const py::object& region) {
     if (!mask.is_none()) {
@@ -150,8 +162,10 @@ GrainFitRequest grain_fit_request(const py::object& photos_argument, const std::
     for (std::size_t k = 0; k < photos.size(); ++k) {
         const std::string label = "photos[" + std::to_string(k) + "]";
         const Image photo = image_argument(photos[k], label);
-        GrainFitPhoto fit_photo{grain_colour(photo, grain_mask(photo, masks[k], regions[k])), stages[k].cast<double>(), std::nullopt, label};
-        fit_photo.plate = plate_argument(plates[k].cast<std::optional<std::string>>(), plate_slow_deg, 0.5);
+        const double stage = photo_value<double>(stages[k], "stage_deg", "an angle in degrees (or a list of one per photo)");
+        const auto plate_name = photo_value<std::optional<std::string>>(plates[k], "plate", "'gypsum', 'mica', 'wedge' or None (or a list of one per photo)");
+        GrainFitPhoto fit_photo{grain_colour(photo, grain_mask(photo, masks[k], regions[k])), stage, std::nullopt, label};
+        fit_photo.plate = plate_argument(plate_name, plate_slow_deg, 0.5);
         request.photos.push_back(std::move(fit_photo));
     }
     return request;

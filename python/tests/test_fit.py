@@ -67,6 +67,10 @@ def test_bad_grain_fits_are_refused():
     photos = grain_photos(30.0, (0.0, 90.0, 0.0))
     with pytest.raises(ValueError, match="stage_deg: give one value for all 3 photos or a list of one per photo \\(got 2\\)"):
         petroscope.fit_orthoscope(photos, mineral="quartz", stage_deg=[0, 30])
+    with pytest.raises(TypeError, match="stage_deg: expected an angle in degrees .*, got str"):
+        petroscope.fit_orthoscope(photos, mineral="quartz", stage_deg=[0, "thirty", 0])
+    with pytest.raises(TypeError, match="plate: expected 'gypsum', 'mica', 'wedge' or None .*, got int"):
+        petroscope.fit_orthoscope(photos, mineral="quartz", plate=3)
     with pytest.raises(ValueError, match="orientation 'known' needs the grain's Euler angles"):
         petroscope.fit_orthoscope(photos, mineral="quartz", orientation="known")
     with pytest.raises(ValueError, match="mask: expected an array \\(height, width\\) of the photo's size"):

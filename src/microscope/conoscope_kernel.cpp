@@ -355,7 +355,7 @@ SampleCrystal::SampleCrystal(const std::vector<const BinormalFrame*>& frames, co
 }
 
 void set_plate(SampleCrystal& crystal, const std::vector<Eigen::Matrix2cd>& jones, const PolarizerPair& polars) {
-    crystal.plate_analyzers = polars.analyzer_in ? 1 : 2;
+    crystal.with_plate = true;
     for (int k = 0; k < 2; ++k) {
         for (auto& component : crystal.plate_analyzer[static_cast<std::size_t>(k)]) component.clear();
     }
@@ -403,7 +403,7 @@ bool run_kernel(const SampleCrystal& crystal, const PolarizerPair& polars, Kerne
     }
     if (terms) {
         transmission_of_both_sides<true, false>(crystal, polars, scratch);
-    } else if (crystal.plate_analyzers > 0) {
+    } else if (crystal.with_plate) {
         transmission_of_both_sides<false, true>(crystal, polars, scratch);
     } else {
         transmission_of_both_sides<false, false>(crystal, polars, scratch);

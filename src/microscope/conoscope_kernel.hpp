@@ -40,8 +40,8 @@ struct SampleCrystal {
     /// An accessory plate after the crystal makes the analyzed intensity |bᵀE| with a complex effective
     /// analyzer b (E the lab field leaving the crystal): b = Jᵀa with the analyzer a, or each row of J
     /// without one (|JE|² = Σ_rows |J_r·E|²), J the plate's Jones matrix at the sample's wavelength.
-    /// plate_analyzers: 0 without a plate, else 1 or 2; plate_analyzer[k]: Re b_x, Re b_y, Im b_x, Im b_y.
-    int plate_analyzers = 0;
+    /// plate_analyzer[k]: Re b_x, Re b_y, Im b_x, Im b_y; the second only without an analyzer.
+    bool with_plate = false;
     std::array<std::array<std::vector<double>, 4>, 2> plate_analyzer;
 };
 

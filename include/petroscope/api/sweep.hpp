@@ -76,8 +76,8 @@ template <class Request>
 Request frame_request(const Request& base, std::string_view request_kind, const SweepGrid& grid, std::size_t frame) {
     Request request = base;
     const std::vector<double> values = grid.values_of(frame);
+    const std::span<const SweepField<Request>> fields = sweep_fields<Request>();
     for (std::size_t a = 0; a < grid.axes.size(); ++a) {
-        const std::span<const SweepField<Request>> fields = sweep_fields<Request>();
         const auto field = std::find_if(fields.begin(), fields.end(), [&](const auto& f) { return f.name == grid.axes[a].field; });
         if (field == fields.end()) throw_unknown_sweep_field(grid.axes[a].field, request_kind, sweep_field_names<Request>());
         field->set(request, values[a]);
