@@ -71,6 +71,7 @@ void add_section_command(CLI::App& app, const std::string& minerals_dir);
 void add_chart_command(CLI::App& app, const std::string& minerals_dir, const std::string& command_line);
 void add_sweep_command(CLI::App& app, const std::string& minerals_dir);
 void add_fit_command(CLI::App& app, const std::string& minerals_dir);
+void add_serve_command(CLI::App& app, const std::string& minerals_dir);
 void add_fit_orthoscope_command(CLI::App* fit, const std::string& minerals_dir);
 
 }  // namespace petroscope::cli

@@ -28,7 +28,8 @@ int main(int argc, char** argv) {
         "  petroscope chart --csv chart.csv -o chart.png\n"
         "  petroscope sweep conoscope --mineral calcite --cut optic-axis --tilt-deg 20 --vary azimuth-deg=0:330:30 -o sweep/\n"
         "  petroscope fit conoscope --photo figure.jpg --mineral calcite --thickness 100um -o fit/\n"
-        "  petroscope render --scene scenes/calcite-box.json --spp 64 -o calcite-box.png"};
+        "  petroscope render --scene scenes/calcite-box.json --spp 64 -o calcite-box.png\n"
+        "  petroscope serve                                             (the microscope in the browser)"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "petroscope 0.1.0");
     std::string minerals_dir;
@@ -45,6 +46,7 @@ int main(int argc, char** argv) {
     petroscope::cli::add_sweep_command(app, minerals_dir);
     petroscope::cli::add_fit_command(app, minerals_dir);
     petroscope::cli::add_frame_command(app, petroscope::cli::make_render_options(), minerals_dir, command_line);
+    petroscope::cli::add_serve_command(app, minerals_dir);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

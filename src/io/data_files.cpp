@@ -35,6 +35,11 @@ std::filesystem::path minerals_directory(const std::string& override_dir) {
     return std::filesystem::path(PETROSCOPE_SOURCE_DIR) / "minerals";
 }
 
+std::filesystem::path shipped_directory(const std::string& name) {
+    if (const char* env = std::getenv("PETROSCOPE_SHIPPED_DIR"); env != nullptr && *env != '\0') return std::filesystem::path(env) / name;
+    return std::filesystem::path(PETROSCOPE_SOURCE_DIR) / name;
+}
+
 std::string read_text_file(const std::filesystem::path& path) {
     std::ifstream file(path, std::ios::binary);
     if (!file) throw InputError("cannot read " + path.string() + ": no such file or not readable");

@@ -1,12 +1,12 @@
 #include "petroscope/microscope/orthoscope.hpp"
 
+#include "petroscope/core/angles.hpp"
 #include "petroscope/core/error.hpp"
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <limits>
-#include <numbers>
 
 namespace petroscope {
 namespace {
@@ -29,8 +29,7 @@ PixelGrains pixel_grains(const ThinSection& section, double stage_deg) {
     const bool per_pixel = section.thickness_kind != ThicknessKind::uniform;
     PixelGrains result{std::vector<int>(count), std::vector<float>(per_pixel ? count : 0)};
     const int outside = static_cast<int>(section.grains.size());
-    const double angle = stage_deg * std::numbers::pi / 180.0;
-    const double c = std::cos(angle), s = std::sin(angle);
+    const double c = std::cos(stage_deg * kDegree), s = std::sin(stage_deg * kDegree);
     const double cx = 0.5 * width, cy = 0.5 * height;
     // Outside the turned section: glass and balsam at the section's thickness in the middle of the field.
     const auto outside_thickness_um = static_cast<float>(per_pixel ? section.section_thickness_at(width / 2, height / 2) : 0.0);

@@ -13,6 +13,10 @@ std::filesystem::path data_directory();
 /// The mineral folder: `override_dir` if not empty, else $PETROSCOPE_MINERALS, else the source tree's minerals/.
 std::filesystem::path minerals_directory(const std::string& override_dir = {});
 
+/// A folder that ships with petroscope beside minerals/ (web, thin_sections): $PETROSCOPE_SHIPPED_DIR/NAME
+/// if that is set, else the source tree's.
+std::filesystem::path shipped_directory(const std::string& name);
+
 /// The whole file as text; throws InputError naming the file if it cannot be read.
 std::string read_text_file(const std::filesystem::path& path);
 
