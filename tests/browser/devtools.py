@@ -298,16 +298,21 @@ class Page:
 
     def mouse_drag(self, x0, y0, x1, y1, steps=10):
         """Press the left button at (x0, y0), move in steps, release at (x1, y1)."""
-        self._mouse("mouseMoved", x0, y0, 0, 0)
-        self._mouse("mousePressed", x0, y0, 1)
-        for step in range(1, steps + 1):
-            self._mouse("mouseMoved", x0 + (x1 - x0) * step / steps,
-                        y0 + (y1 - y0) * step / steps, 1, 0)
-        self._mouse("mouseReleased", x1, y1, 0)
+        self.mouse_drag_along([(x0 + (x1 - x0) * k / steps, y0 + (y1 - y0) * k / steps)
+                               for k in range(1, steps + 1)] if steps else [], start=(x0, y0))
 
-    def key(self, key):
+    def mouse_drag_along(self, points, start):
+        """Press the left button at start, move through points, release at the last one."""
+        self._mouse("mouseMoved", *start, 0, 0)
+        self._mouse("mousePressed", *start, 1)
+        for x, y in points:
+            self._mouse("mouseMoved", x, y, 1, 0)
+        self._mouse("mouseReleased", *(points[-1] if points else start), 0)
+
+    def key(self, key, shift=False):
         """Press and release one key: a DOM key name or a printable character."""
         code, vk, text, modifiers = _key_description(key)
+        modifiers |= SHIFT if shift else 0
         params = {"key": key, "code": code, "windowsVirtualKeyCode": vk, "modifiers": modifiers}
         down = {"type": "keyDown", "text": text} if text else {"type": "rawKeyDown"}
         self.send("Input.dispatchKeyEvent", {**params, **down})

@@ -1,0 +1,102 @@
+// The live microscope's answers (serve/live_microscope.hpp) without a socket: the page's files and nothing
+// else, the catalog, the views' binary format against the library's harmonics, and bad input refused with
+// a message that names the parameter.
+#include "petroscope/core/error.hpp"
+#include "petroscope/io/data_files.hpp"
+#include "petroscope/serve/live_microscope.hpp"
+#include "petroscope/serve/view_requests.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+
+namespace petroscope::serve {
+namespace {
+
+const MineralCatalog& catalog() {
+    static const MineralCatalog minerals = load_mineral_catalog(std::filesystem::path(PETROSCOPE_SOURCE_DIR) / "minerals");
+    return minerals;
+}
+
+const LiveMicroscope& microscope() {
+    static const LiveMicroscope live(catalog(), std::filesystem::path(PETROSCOPE_SOURCE_DIR) / "web",
+                                     std::filesystem::path(PETROSCOPE_SOURCE_DIR) / "thin_sections");
+    return live;
+}
+
+Reply get(const std::string& path, const std::vector<std::pair<std::string, std::string>>& query = {}) {
+    return microscope().get(path, QueryParameters(query));
+}
+
+std::string error_of(const Reply& reply) {
+    EXPECT_EQ(reply.status, 400) << reply.body;
+    return nlohmann::json::parse(reply.body).value("error", "");
+}
+
+std::uint32_t header_word(const std::string& body, int index) {
+    std::uint32_t word = 0;
+    std::memcpy(&word, body.data() + 4 * index, 4);
+    return word;
+}
+
+TEST(LiveMicroscope, ServesThePageAndNoOtherFile) {
+    EXPECT_EQ(get("/").status, 200);
+    EXPECT_EQ(get("/").content_type, "text/html; charset=utf-8");
+    EXPECT_EQ(get("/microscope.js").content_type, "text/javascript; charset=utf-8");
+    for (const std::string path : {"/../CMakeLists.txt", "/web/index.html", "/api/nothing", "/etc/passwd", "/index.html/"}) {
+        EXPECT_EQ(get(path).status, 404) << path;
+    }
+}
+
+TEST(LiveMicroscope, TheCatalogListsMineralsAndTheShippedSections) {
+    const nlohmann::json catalog_json = nlohmann::json::parse(get("/api/catalog").body);
+    EXPECT_EQ(catalog_json["minerals"].size(), catalog().minerals().size());
+    const std::vector<std::string> sections = catalog_json["sections"];
+    EXPECT_NE(std::find(sections.begin(), sections.end(), "granite"), sections.end());
+    EXPECT_EQ(sections.back(), "random");
+}
+
+// The bytes the page decodes are the library's harmonics: header, outside, then 15 floats per pixel.
+TEST(LiveMicroscope, AViewIsTheLibrarysHarmonicsInTheDocumentedFormat) {
+    const std::vector<std::pair<std::string, std::string>> query{{"mineral", "quartz"}, {"cut", "optic-axis"}, {"tilt_deg", "40"}, {"plate", "gypsum"}};
+    const Reply reply = get("/api/view", query);
+    ASSERT_EQ(reply.status, 200) << reply.body;
+    EXPECT_EQ(reply.content_type, "application/octet-stream");
+    EXPECT_EQ(header_word(reply.body, 0), 0x31485350u);
+    EXPECT_EQ(header_word(reply.body, 1), static_cast<std::uint32_t>(kCrystalFieldPx));
+    EXPECT_EQ(header_word(reply.body, 3), 0u);  // containing pixel
+    const StageHarmonics expected =
+        orthoscope_stage_harmonics(orthoscope_view_request(QueryParameters(query), catalog(), {}), catalog());
+    ASSERT_EQ(reply.body, encode_stage_harmonics(expected));
+    EXPECT_EQ(reply.body.size(), 16 + 4 * (kStageHarmonicChannels + expected.coefficients.pixels.size()));
+}
+
+TEST(LiveMicroscope, TheBertrandViewOfAPickedGrainIsThatGrainsFigure) {
+    const Reply reply = get("/api/view", {{"optics", "conoscope"}, {"section", "granite"}, {"x", "100"}, {"y", "300"}, {"size_px", "64"}});
+    ASSERT_EQ(reply.status, 200) << reply.body;
+    EXPECT_EQ(header_word(reply.body, 1), 64u);
+    EXPECT_EQ(header_word(reply.body, 3), 1u);  // bilinear
+    const nlohmann::json grain = nlohmann::json::parse(get("/api/grain", {{"section", "granite"}, {"x", "100"}, {"y", "300"}}).body);
+    EXPECT_TRUE(grain.contains("label"));
+    EXPECT_GT(grain["retardation_nm"].get<double>(), 0.0);
+    EXPECT_EQ(grain["thickness_um"].get<double>(), 30.0);
+}
+
+TEST(LiveMicroscope, BadInputIsRefusedNamingTheParameter) {
+    EXPECT_EQ(error_of(get("/api/view", {{"thickness_um", "-1"}})), "parameter 'thickness_um': expected a number from 0.01 to 1e+05, got '-1'");
+    EXPECT_NE(error_of(get("/api/view", {{"section", "../../etc"}})).find("parameter 'section': expected one of"), std::string::npos);
+    EXPECT_NE(error_of(get("/api/view", {{"mineral", "kryptonite\x1b[2J"}})).find("kryptonite\\x1b[2J"), std::string::npos);
+    EXPECT_NE(error_of(get("/api/view", {{"size_px", "5000"}, {"optics", "conoscope"}})).find("parameter 'size_px'"), std::string::npos);
+    EXPECT_NE(error_of(get("/api/view", {{"euler", "1,2"}})).find("parameter 'euler'"), std::string::npos);
+    EXPECT_NE(error_of(get("/api/view", {{"cut", "sideways"}})).find("parameter 'cut'"), std::string::npos);
+    EXPECT_NE(error_of(get("/api/grain", {{"section", "granite"}, {"x", "512"}})).find("parameter 'x'"), std::string::npos);
+    EXPECT_NE(error_of(get("/api/view", {{"analyzer", "maybe"}})).find("expected one of in, out"), std::string::npos);
+    EXPECT_NE(error_of(get("/api/view", {{"zoom", "2"}})).find("unknown parameter 'zoom'"), std::string::npos);
+    EXPECT_THROW(QueryParameters({{"plate", "mica"}, {"plate", "gypsum"}}), InputError);
+}
+
+}  // namespace
+}  // namespace petroscope::serve
