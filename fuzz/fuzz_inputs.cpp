@@ -12,6 +12,8 @@
 #include "petroscope/io/sweep_plan.hpp"
 #include "petroscope/io/thin_section_file.hpp"
 #include "petroscope/minerals/mineral_parser.hpp"
+#include "petroscope/serve/live_microscope.hpp"
+#include "petroscope/serve/view_requests.hpp"
 
 #include <filesystem>
 #include <fstream>
@@ -67,6 +69,24 @@ void values(std::string_view input) {
     }
 }
 
+/// A query of the live microscope's server, "name=value&…" as the server has it after decoding: the grain's
+/// numbers answered, and both views' requests built and planned (not rendered: a view takes a second).
+void serve_query(std::string_view input) {
+    static const serve::LiveMicroscope microscope(catalog(), shipped_directory("web"), shipped_directory("thin_sections"));
+    static const auto granite = std::make_shared<const ThinSection>(read_thin_section(shipped_directory("thin_sections") / "granite", catalog()));
+    std::vector<std::pair<std::string, std::string>> pairs;
+    for (const std::string& part : split(input, '&')) {
+        const std::size_t equals = part.find('=');
+        pairs.emplace_back(part.substr(0, equals), equals == std::string::npos ? "" : part.substr(equals + 1));
+    }
+    const serve::QueryParameters query(pairs);
+    const serve::Reply reply = microscope.get("/api/grain", query);
+    if (reply.status != 200 && reply.status != 400) throw std::logic_error("status " + std::to_string(reply.status) + ": " + reply.body);
+    const serve::SectionLookup sections = [](const serve::QueryParameters&) { return granite; };
+    plan_orthoscope(serve::orthoscope_view_request(query, catalog(), sections), catalog());
+    plan_conoscope(serve::conoscope_view_request(query, catalog(), sections), catalog());
+}
+
 void dispatch(const std::string& name, std::string_view input) {
     if (name == "mineral") {
         parse_mineral(input, "fuzz.txt");
@@ -79,6 +99,8 @@ void dispatch(const std::string& name, std::string_view input) {
         parse_scene(std::string(input), scratch() / "scene.json", catalog(), spectrum);
     } else if (name == "values") {
         values(input);
+    } else if (name == "serve_query") {
+        serve_query(input);
     } else if (name == "jpeg_header") {
         (void)jpeg_encoding_of({reinterpret_cast<const std::uint8_t*>(input.data()), input.size()}, "fuzz.jpg");
     } else {
@@ -89,7 +111,7 @@ void dispatch(const std::string& name, std::string_view input) {
 }  // namespace
 
 const std::vector<std::string>& target_names() {
-    static const std::vector<std::string> names{"mineral", "thin_section", "interface_case", "scene", "values", "jpeg_header"};
+    static const std::vector<std::string> names{"mineral", "thin_section", "interface_case", "scene", "values", "jpeg_header", "serve_query"};
     return names;
 }
 

@@ -9,7 +9,7 @@
 
 namespace petroscope::fuzz {
 
-/// The targets by name: "mineral", "thin_section", "interface_case", "scene", "values", "jpeg_header".
+/// The targets by name: "mineral", "thin_section", "interface_case", "scene", "values", "jpeg_header", "serve_query".
 const std::vector<std::string>& target_names();
 /// Runs target `name` on `input`.
 void run_target(const std::string& name, std::string_view input);

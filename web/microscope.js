@@ -280,9 +280,9 @@ function showNumbers() {
   list.replaceChildren();
   $("grain-where").textContent = "";
   if (!n) return;
-  $("grain-where").textContent = (n.label !== undefined ? "grain " + n.label + ": " : "") + n.mineral;
+  $("grain-where").textContent = (n.label !== undefined ? n.label + ", " : "") + n.mineral;
   const fixed = (value, digits) => value === null ? "—" : Number(value).toFixed(digits);
-  const extinction = n.extinction_stage_deg === null ? "none (isotropic section)"
+  const extinction = n.extinction_stage_deg === null ? "none: no birefringence along the axis"
     : [0, 1, 2, 3].map((k) => (n.extinction_stage_deg + 90 * k).toFixed(1) + "°").join(", ");
   const rows = [
     ["thickness", fixed(n.thickness_um, 1) + " µm"],
@@ -291,7 +291,7 @@ function showNumbers() {
     ["slow direction now", n.slow_azimuth_deg === null ? "—" : (((n.slow_azimuth_deg + state.stageDeg) % 180 + 180) % 180).toFixed(1) + "° from E"],
     ["extinction at stage", extinction],
     ["mineral's nγ − nα", fixed(n.mineral_birefringence, 4)],
-    ["2V", n.two_v_deg === null ? "— (isotropic)" : fixed(n.two_v_deg, 1) + "°"],
+    ["2V", n.two_v_deg === null ? "— (isotropic mineral)" : fixed(n.two_v_deg, 1) + "°"],
     ["optic sign", n.optic_sign || "—"],
   ];
   for (const [term, value] of rows) {
