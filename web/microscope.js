@@ -44,6 +44,7 @@ function viewQuery(variant = {}, sizePx = 512) {
   } else {
     params.set("size_px", sizePx);
   }
+  params.set("polarizer", $("polarizer").checked ? "in" : "out");
   const analyzerIn = variant.analyzer ?? $("analyzer").checked;
   params.set("analyzer", analyzerIn ? "in" : "out");
   const plate = variant.plate ?? $("plate").value;
@@ -324,6 +325,25 @@ function saveImage() {
   download(new Blob([JSON.stringify(sidecar, null, 2)], { type: "application/json" }), "petroscope-view.json");
 }
 
+// ---- a section of the user's own -------------------------------------------------------------------------
+
+/// Sends a section's description (the .txt) and grain maps; the server answers with the name to view it by.
+async function sendSection(files) {
+  const form = new FormData();
+  for (const file of files) form.append(file.name.endsWith(".txt") ? "description" : "map", file, file.name);
+  setStatus("reading the section…");
+  const response = await fetch("api/section", { method: "POST", body: form });
+  const answer = await response.json();
+  if (!response.ok) { setStatus("error: " + answer.error); return; }
+  const option = document.createElement("option");
+  option.value = answer.section;
+  option.textContent = answer.name + " (yours)";
+  $("section").append(option);
+  $("section").value = answer.section;
+  document.querySelector('input[name="specimen"][value="section"]').checked = true;
+  specimenChanged();
+}
+
 // ---- wiring ----------------------------------------------------------------------------------------------
 
 function setStatus(text) { $("status").textContent = text; }
@@ -355,13 +375,16 @@ async function start() {
   fillSelect($("cut"), catalog.cuts, "optic-axis");
   for (const id of ["section", "seed", "section-thickness", "mineral", "cut", "tilt", "crystal-thickness"]) $(id).addEventListener("change", specimenChanged);
   for (const input of document.querySelectorAll('input[name="specimen"]')) input.addEventListener("change", specimenChanged);
-  for (const id of ["analyzer", "plate", "wedge", "condenser", "bertrand", "illuminant"]) $(id).addEventListener("change", refresh);
+  for (const id of ["polarizer", "analyzer", "plate", "wedge", "condenser", "bertrand", "illuminant"]) $(id).addEventListener("change", refresh);
   $("plate").addEventListener("change", () => { $("wedge-label").hidden = $("plate").value !== "wedge"; });
   for (const input of document.querySelectorAll('input[name="light"]')) input.addEventListener("change", () => { refresh(); loadNumbers(); });
   $("wavelength").addEventListener("input", () => { $("wavelength-readout").textContent = $("wavelength").value + " nm"; });
   $("wavelength").addEventListener("change", () => { refresh(); loadNumbers(); });
   $("stage").addEventListener("change", () => setStage(Number($("stage").value) || 0));
   $("save").addEventListener("click", saveImage);
+  $("section-files").addEventListener("change", () => sendSection([...$("section-files").files]));
+  $("field").addEventListener("dragover", (event) => event.preventDefault());
+  $("field").addEventListener("drop", (event) => { event.preventDefault(); sendSection([...event.dataTransfer.files]); });
   specimenChanged();
   requestAnimationFrame(frame);
 }

@@ -2,6 +2,7 @@
 
 #include "petroscope/core/angles.hpp"
 #include "petroscope/core/error.hpp"
+#include "petroscope/microscope/conoscope.hpp"
 
 #include <cmath>
 #include <functional>
@@ -74,21 +75,30 @@ void add_composed(const float* coefficients, const std::array<double, kStageHarm
     }
 }
 
-}  // namespace
-
-StageHarmonics conoscope_stage_harmonics(const ConoscopeRequest& request, const MineralCatalog& catalog, const ProgressCallback& progress) {
-    require_stage_zero(request);
+StageHarmonics polarized_conoscope_harmonics(const ConoscopeRequest& request, const MineralCatalog& catalog, const ProgressCallback& progress) {
     StageHarmonics harmonics;
-    harmonics.resampling = StageResampling::bilinear;
-    const auto render = [&](int k, const ProgressCallback& part) {
-        return render_conoscope_figure(plan_conoscope(with_tube_turned(request, -kSampleStepDeg * k), catalog), part).image;
+    harmonics.resampling = StageResampling::bilinear;  // beyond the objective's aperture the figure is black: `outside` stays 0
+    std::vector<ConoscopePlan> plans;
+    for (int k = 0; k < kStageHarmonicCount; ++k) plans.push_back(plan_conoscope(with_tube_turned(request, -kSampleStepDeg * k), catalog));
+    if (request.light.monochromatic() || request.mounting != SlabMounting::immersed) {
+        const auto render = [&](int k, const ProgressCallback& part) { return render_conoscope_figure(plans[static_cast<std::size_t>(k)], part).image; };
+        harmonics.coefficients = harmonic_coefficients(render, progress, &harmonics.illuminant);
+        return harmonics;
+    }
+    // White light through an immersed slab: the five figures share each image point's eigenmodes.
+    std::vector<ConoscopeSettings> settings;
+    for (const ConoscopePlan& plan : plans) settings.push_back(plan.settings);
+    const Mineral& mineral = *plans.front().mineral;
+    const std::vector<Image> xyz = render_conoscope_polarization_set(
+        settings, [&mineral](double nm) { return mineral.principal_n(nm); }, white_light_integrator(request.light), progress);
+    const auto display = [&](int k, const ProgressCallback&) {
+        return render_in_light(request.light, [&](const SpectralIntegrator*) { return xyz[static_cast<std::size_t>(k)]; });
     };
-    harmonics.coefficients = harmonic_coefficients(render, progress, &harmonics.illuminant);
-    return harmonics;  // beyond the objective's aperture the figure is black: `outside` stays 0
+    harmonics.coefficients = harmonic_coefficients(display, {}, &harmonics.illuminant);
+    return harmonics;
 }
 
-StageHarmonics orthoscope_stage_harmonics(const OrthoscopeRequest& request, const MineralCatalog& catalog, const ProgressCallback& progress) {
-    require_stage_zero(request);
+StageHarmonics polarized_orthoscope_harmonics(const OrthoscopeRequest& request, const MineralCatalog& catalog, const ProgressCallback& progress) {
     StageHarmonics harmonics;
     harmonics.resampling = StageResampling::containing_pixel;
     double middle_thickness_um = 0.0;
@@ -109,6 +119,37 @@ StageHarmonics orthoscope_stage_harmonics(const OrthoscopeRequest& request, cons
     const Image outside = harmonic_coefficients(render_outside, {}, nullptr);
     std::copy(outside.pixels.begin(), outside.pixels.end(), harmonics.outside.begin());
     return harmonics;
+}
+
+/// `polarized(request, progress)` once, or for unpolarized light the mean of it with the polarizer at
+/// polarizer_deg and at polarizer_deg + 90°.
+template <typename Request, typename Polarized>
+StageHarmonics harmonics_in(const Request& request, Illumination illumination, const ProgressCallback& progress, const Polarized& polarized) {
+    require_stage_zero(request);
+    if (illumination == Illumination::polarized) return polarized(request, progress);
+    Request crossed = request;
+    crossed.polarizer_deg += 90.0;
+    StageHarmonics mean = polarized(request, [&](double f) { return !progress || progress(0.5 * f); });
+    const StageHarmonics other = polarized(crossed, [&](double f) { return !progress || progress(0.5 + 0.5 * f); });
+    for (std::size_t k = 0; k < mean.coefficients.pixels.size(); ++k) mean.coefficients.pixels[k] = 0.5f * (mean.coefficients.pixels[k] + other.coefficients.pixels[k]);
+    for (std::size_t k = 0; k < mean.outside.size(); ++k) mean.outside[k] = 0.5f * (mean.outside[k] + other.outside[k]);
+    return mean;
+}
+
+}  // namespace
+
+StageHarmonics conoscope_stage_harmonics(const ConoscopeRequest& request, const MineralCatalog& catalog, Illumination illumination,
+                                         const ProgressCallback& progress) {
+    return harmonics_in(request, illumination, progress, [&](const ConoscopeRequest& r, const ProgressCallback& p) {
+        return polarized_conoscope_harmonics(r, catalog, p);
+    });
+}
+
+StageHarmonics orthoscope_stage_harmonics(const OrthoscopeRequest& request, const MineralCatalog& catalog, Illumination illumination,
+                                          const ProgressCallback& progress) {
+    return harmonics_in(request, illumination, progress, [&](const OrthoscopeRequest& r, const ProgressCallback& p) {
+        return polarized_orthoscope_harmonics(r, catalog, p);
+    });
 }
 
 Image compose_at_stage(const StageHarmonics& harmonics, double stage_deg) {

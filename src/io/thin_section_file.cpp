@@ -190,7 +190,7 @@ ThinSectionGrain parse_grain(const Description& description, int label, const En
     return grain;
 }
 
-void read_thickness(const Description& description, const fs::path& folder, ThinSection& section) {
+void read_thickness(const Description& description, const ThinSectionMapResolver& map_path, ThinSection& section) {
     const Entry* uniform = description.find("thickness_um");
     const Entry* wedge = description.find("thickness_wedge_um");
     const Entry* map = description.find("thickness_map");
@@ -220,7 +220,7 @@ void read_thickness(const Description& description, const fs::path& folder, Thin
     } else {
         FloatImage image;
         try {
-            image = read_float_image(folder / map->value);
+            image = read_float_image(map_path(map->value));
         } catch (const InputError& e) {
             throw description.error(*map, std::string("thickness_map: ") + e.what());
         }
@@ -294,8 +294,12 @@ ThinSection read_thin_section(const fs::path& description_or_dir, const MineralC
                          kThinSectionDescriptionName + ")");
     }
     const fs::path path = thin_section_description_path(description_or_dir);
-    const std::string file = path.string();
     const fs::path folder = path.parent_path();
+    return read_thin_section(path, catalog, [&folder](const std::string& name) { return folder / name; });
+}
+
+ThinSection read_thin_section(const fs::path& path, const MineralCatalog& catalog, const ThinSectionMapResolver& map_path) {
+    const std::string file = path.string();
     const Description description = split_description(read_text_file(path), file);
 
     ThinSection section;
@@ -322,7 +326,7 @@ ThinSection read_thin_section(const fs::path& description_or_dir, const MineralC
 
     LabelImage map;
     try {
-        map = read_label_png(folder / map_entry.value);
+        map = read_label_png(map_path(map_entry.value));
     } catch (const InputError& e) {
         throw description.error(map_entry, std::string("grain_map: ") + e.what());
     }
@@ -332,7 +336,7 @@ ThinSection read_thin_section(const fs::path& description_or_dir, const MineralC
                                                 " pixels; expected them to agree");
     }
     section.labels = std::move(map.labels);
-    read_thickness(description, folder, section);
+    read_thickness(description, map_path, section);
 
     section.index_grains();  // labels are unique (checked per line above)
     check_labels_have_grains(section, file, map_entry.value);

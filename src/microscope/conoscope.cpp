@@ -8,6 +8,8 @@
 
 #include <atomic>
 #include <cmath>
+#include <functional>
+#include <memory>
 
 namespace petroscope {
 
@@ -77,6 +79,133 @@ void ConoscopeTerms::evaluate(const std::vector<Eigen::Vector2d>& xis, std::vect
     }
 }
 
+namespace {
+
+void require_one_crystal(const std::vector<ConoscopeSettings>& settings) {
+    if (settings.empty()) throw InputError("no figures to render");
+    const ConoscopeSettings& first = settings.front();
+    for (const ConoscopeSettings& other : settings) {
+        other.validate();
+        if (other.mounting) throw InputError("figures that share their modes are of an immersed slab");
+        const bool same_crystal = other.crystal_axes == first.crystal_axes && other.stage_deg == first.stage_deg &&
+                                  other.thickness_um == first.thickness_um && other.wavelengths_nm == first.wavelengths_nm &&
+                                  other.numerical_aperture == first.numerical_aperture && other.size_px == first.size_px &&
+                                  other.surround_n == first.surround_n;
+        if (!same_crystal) throw InputError("figures that share their modes may differ in their polars and plate only");
+    }
+}
+
+/// Visits the image points inside the aperture in pairs of opposite directions (ξ, −ξ): (column, row) and
+/// (size−1−column, size−1−row), rows 0 … ⌈size/2⌉−1 in parallel, and of the middle row of an odd size its
+/// first half. `visit(state, column, row, xi, continues_row)` gets its thread's `State`; `flush(state)` ends a row.
+template <typename State, typename Visit, typename Flush>
+void for_each_point_pair(const ConoscopeSettings& settings, const ProgressCallback& progress, const std::function<State()>& make_state,
+                         const Visit& visit, const Flush& flush) {
+    const int size = settings.size_px;
+    ProgressRelay relay(progress);
+    std::atomic<int> rows_done{0};
+    const double aperture_squared = settings.numerical_aperture * settings.numerical_aperture;
+    const int paired_rows = (size + 1) / 2;
+#pragma omp parallel
+    {
+        State state = make_state();
+#pragma omp for schedule(dynamic, 2)
+        for (int row = 0; row < paired_rows; ++row) {
+            if (relay.cancelled()) continue;
+            const int columns = (size % 2 == 1 && row == size / 2) ? size / 2 + 1 : size;
+            bool continues_row = false;  // the previous point's roots can start the iterations
+            for (int column = 0; column < columns; ++column) {
+                const Eigen::Vector2d xi = conoscope_tangential_wavevector(settings, column, row);
+                if (xi.squaredNorm() > aperture_squared) {
+                    continues_row = false;
+                    continue;
+                }
+                visit(state, column, row, xi, continues_row);
+                continues_row = true;
+            }
+            flush(state);
+            relay.count_done(rows_done, paired_rows);
+        }
+    }
+    relay.finish();
+}
+
+/// A thread's buffers for white light.
+struct SpectralState {
+    std::vector<double> plus, minus;
+    detail::KernelScratch scratch;
+};
+
+/// A thread's batch of pixel pairs in monochromatic light.
+struct MonochromaticState {
+    std::vector<Eigen::Vector2d> xis;
+    std::vector<std::pair<int, int>> pixels;
+    std::vector<double> plus, minus;
+    detail::KernelScratch scratch;
+};
+
+Image render_monochromatic(const ConoscopeSettings& settings, const PrincipalIndexFunction& principal_n, const ProgressCallback& progress) {
+    const detail::ConoscopeEvaluator evaluator(settings, principal_n);
+    const int size = settings.size_px;
+    Image image(size, size, 1);
+    constexpr std::size_t batch = detail::ConoscopeEvaluator::kMonochromaticBatch;
+    // The row's pixel pairs go through the kernel together.
+    const auto flush = [&](MonochromaticState& state) {
+        evaluator.monochromatic_pairs(state.xis, state.scratch, state.plus.data(), state.minus.data());
+        for (std::size_t k = 0; k < state.xis.size(); ++k) {
+            const auto [column, row] = state.pixels[k];
+            image.at(column, row, 0) = static_cast<float>(state.plus[k]);
+            image.at(size - 1 - column, size - 1 - row, 0) = static_cast<float>(state.minus[k]);
+        }
+        state.xis.clear();
+        state.pixels.clear();
+    };
+    const auto visit = [&](MonochromaticState& state, int column, int row, const Eigen::Vector2d& xi, bool) {
+        state.xis.push_back(xi);
+        state.pixels.emplace_back(column, row);
+        if (state.xis.size() == batch) flush(state);
+    };
+    const std::function<MonochromaticState()> make_state = [] { return MonochromaticState{{}, {}, std::vector<double>(batch), std::vector<double>(batch), {}}; };
+    for_each_point_pair(settings, progress, make_state, visit, [&](MonochromaticState& state) {
+        if (!state.xis.empty()) flush(state);
+    });
+    return image;
+}
+
+}  // namespace
+
+std::vector<Image> render_conoscope_polarization_set(const std::vector<ConoscopeSettings>& settings, const PrincipalIndexFunction& principal_n,
+                                                     const SpectralIntegrator& integrator, const ProgressCallback& progress) {
+    require_one_crystal(settings);
+    if (integrator.weights().size() != settings.front().wavelengths_nm.size()) {
+        throw InputError("the colour integrator and the figure use different wavelength grids");
+    }
+    std::vector<std::unique_ptr<const detail::ConoscopeEvaluator>> evaluators;
+    for (const ConoscopeSettings& each : settings) evaluators.push_back(std::make_unique<const detail::ConoscopeEvaluator>(each, principal_n));
+    const int size = settings.front().size_px;
+    std::vector<Image> images(settings.size(), Image(size, size, 3));
+    const std::size_t count = evaluators.front()->wavelength_count();
+    // XYZ of the transmission spectrum.
+    const auto store = [&integrator](Image& image, int column, int row, const std::vector<double>& transmission) {
+        const Eigen::Vector3d xyz = integrator.integrate(transmission);
+        for (int c = 0; c < 3; ++c) image.at(column, row, c) = static_cast<float>(xyz[c]);
+    };
+    const auto visit = [&](SpectralState& state, int column, int row, const Eigen::Vector2d& xi, bool continues_row) {
+        for (std::size_t k = 0; k < evaluators.size(); ++k) {
+            if (k == 0) {
+                evaluators[k]->spectral_pair(xi, state.scratch, continues_row, state.plus.data(), state.minus.data());
+            } else {
+                evaluators[k]->spectral_pair_same_modes(xi, state.scratch, state.plus.data(), state.minus.data());
+            }
+            store(images[k], column, row, state.plus);
+            store(images[k], size - 1 - column, size - 1 - row, state.minus);
+        }
+    };
+    const std::function<SpectralState()> make_state = [count] { return SpectralState{std::vector<double>(count), std::vector<double>(count), {}}; };
+    for_each_point_pair(settings.front(), progress, make_state, visit, [](SpectralState&) {});
+    return images;
+}
+
 Image render_conoscope(const ConoscopeSettings& settings, const PrincipalIndexFunction& principal_n,
                        const SpectralIntegrator* integrator, const ProgressCallback& progress) {
     settings.validate();
@@ -87,67 +216,8 @@ Image render_conoscope(const ConoscopeSettings& settings, const PrincipalIndexFu
         throw InputError("the colour integrator and the figure use different wavelength grids");
     }
     if (settings.mounting) return detail::render_conoscope_through_stack(settings, principal_n, integrator, progress);
-    const detail::ConoscopeEvaluator evaluator(settings, principal_n);
-    const int size = settings.size_px;
-    Image image(size, size, integrator != nullptr ? 3 : 1);
-    ProgressRelay relay(progress);
-    std::atomic<int> rows_done{0};
-    const double aperture_squared = settings.numerical_aperture * settings.numerical_aperture;
-
-    // Pixels are done in pairs (column, row) and (size−1−column, size−1−row), whose directions are
-    // opposite (ξ and −ξ): rows 0 … ⌈size/2⌉−1, and of the middle row of an odd size its first half.
-    const int paired_rows = (size + 1) / 2;
-    // White light: XYZ of the transmission spectrum.
-    const auto store = [&](int column, int row, const std::vector<double>& transmission) {
-        const Eigen::Vector3d xyz = integrator->integrate(transmission);
-        for (int c = 0; c < 3; ++c) image.at(column, row, c) = static_cast<float>(xyz[c]);
-    };
-#pragma omp parallel
-    {
-        std::vector<double> plus(evaluator.wavelength_count()), minus(evaluator.wavelength_count());
-        std::vector<Eigen::Vector2d> batch_xi;
-        std::vector<std::pair<int, int>> batch_pixels;
-        std::vector<double> batch_plus(detail::ConoscopeEvaluator::kMonochromaticBatch), batch_minus(batch_plus.size());
-        detail::KernelScratch scratch;
-        // Monochromatic light: the row's pixel pairs go through the kernel together.
-        const auto flush_batch = [&] {
-            evaluator.monochromatic_pairs(batch_xi, scratch, batch_plus.data(), batch_minus.data());
-            for (std::size_t k = 0; k < batch_xi.size(); ++k) {
-                const auto [column, row] = batch_pixels[k];
-                image.at(column, row, 0) = static_cast<float>(batch_plus[k]);
-                image.at(size - 1 - column, size - 1 - row, 0) = static_cast<float>(batch_minus[k]);
-            }
-            batch_xi.clear();
-            batch_pixels.clear();
-        };
-#pragma omp for schedule(dynamic, 2)
-        for (int row = 0; row < paired_rows; ++row) {
-            if (relay.cancelled()) continue;
-            const int columns = (size % 2 == 1 && row == size / 2) ? size / 2 + 1 : size;
-            bool continues_row = false;  // white light: the previous pixel's roots start the iterations
-            for (int column = 0; column < columns; ++column) {
-                const Eigen::Vector2d xi = conoscope_tangential_wavevector(settings, column, row);
-                if (xi.squaredNorm() > aperture_squared) {
-                    continues_row = false;
-                    continue;
-                }
-                if (integrator == nullptr) {
-                    batch_xi.push_back(xi);
-                    batch_pixels.emplace_back(column, row);
-                    if (batch_xi.size() == detail::ConoscopeEvaluator::kMonochromaticBatch) flush_batch();
-                    continue;
-                }
-                evaluator.spectral_pair(xi, scratch, continues_row, plus.data(), minus.data());
-                continues_row = true;
-                store(column, row, plus);
-                store(size - 1 - column, size - 1 - row, minus);
-            }
-            if (!batch_xi.empty()) flush_batch();
-            relay.count_done(rows_done, paired_rows);
-        }
-    }
-    relay.finish();
-    return image;
+    if (integrator == nullptr) return render_monochromatic(settings, principal_n, progress);
+    return std::move(render_conoscope_polarization_set({settings}, principal_n, *integrator, progress).front());
 }
 
 }  // namespace petroscope

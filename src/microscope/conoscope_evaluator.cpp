@@ -70,7 +70,6 @@ ConoscopeEvaluator::ConoscopeEvaluator(const ConoscopeSettings& settings, const 
 
 void ConoscopeEvaluator::spectral_pair(const Eigen::Vector2d& xi, KernelScratch& scratch, bool continues_row,
                                        double* out_plus, double* out_minus) const {
-    const std::size_t count = spectral_samples_.size();
     if (scratch.failed.size() != spectral_samples_.padded_size()) {
         scratch.resize(spectral_samples_.padded_size());
         scratch.warm_ready = false;
@@ -80,7 +79,16 @@ void ConoscopeEvaluator::spectral_pair(const Eigen::Vector2d& xi, KernelScratch&
     bool any_failed = run_kernel(spectral_samples_, polars_, scratch, warm);
     // A warm start too far from the roots (coarse pixels): start again from scratch, still vectorised.
     if (any_failed && warm) any_failed = run_kernel(spectral_samples_, polars_, scratch, false);
-    for (std::size_t w = 0; w < count; ++w) {
+    collect_pair(xi, scratch, any_failed, out_plus, out_minus);
+}
+
+void ConoscopeEvaluator::spectral_pair_same_modes(const Eigen::Vector2d& xi, KernelScratch& scratch, double* out_plus, double* out_minus) const {
+    collect_pair(xi, scratch, retransmit(spectral_samples_, polars_, scratch), out_plus, out_minus);
+}
+
+void ConoscopeEvaluator::collect_pair(const Eigen::Vector2d& xi, const KernelScratch& scratch, bool any_failed, double* out_plus,
+                                      double* out_minus) const {
+    for (std::size_t w = 0; w < spectral_samples_.size(); ++w) {
         if (any_failed && scratch.failed[w] != 0) {
             const std::array<double, 2> reference = reference_pair(w, xi);
             out_plus[w] = reference[0];

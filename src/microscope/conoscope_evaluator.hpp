@@ -25,6 +25,10 @@ public:
     void spectral_pair(const Eigen::Vector2d& xi, KernelScratch& scratch, bool continues_row, double* out_plus,
                        double* out_minus) const;
 
+    /// After spectral_pair for the same ξ and scratch by an evaluator of the same crystal, stage, thickness and
+    /// wavelengths (only polars and plate differ): this evaluator's transmission, from the modes in `scratch`.
+    void spectral_pair_same_modes(const Eigen::Vector2d& xi, KernelScratch& scratch, double* out_plus, double* out_minus) const;
+
     /// Monochromatic light: transmission for each ξ of `xis` (at most kMonochromaticBatch) and its −ξ.
     void monochromatic_pairs(const std::vector<Eigen::Vector2d>& xis, KernelScratch& scratch, double* out_plus,
                              double* out_minus) const;
@@ -37,6 +41,8 @@ public:
     std::array<double, 2> reference_pair(std::size_t w, const Eigen::Vector2d& xi) const;
 
 private:
+    /// The kernel's transmission at every wavelength, the reference path's where a sample failed.
+    void collect_pair(const Eigen::Vector2d& xi, const KernelScratch& scratch, bool any_failed, double* out_plus, double* out_minus) const;
     /// The slab's transfer for ξ (index 0) and −ξ (1) at wavelength index `w`; none where a sheet has no
     /// propagating mode (no power crosses the slab).
     std::optional<std::array<SlabTransfer, 2>> reference_transfers(std::size_t w, const Eigen::Vector2d& xi) const;

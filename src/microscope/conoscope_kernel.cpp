@@ -393,14 +393,10 @@ void set_sample_directions(KernelScratch& scratch, std::size_t first, std::size_
     for (int k = 0; k < 5; ++k) std::fill_n(arrays[k]->begin() + static_cast<std::ptrdiff_t>(first), count, values[k]);
 }
 
-bool run_kernel(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch, bool warm, bool terms) {
-    if (crystal.uniaxial) {
-        solve_side<true, 0>(crystal, scratch, warm);
-        solve_side<true, 1>(crystal, scratch, warm);
-    } else {
-        solve_side<false, 0>(crystal, scratch, warm);
-        solve_side<false, 1>(crystal, scratch, warm);
-    }
+namespace {
+
+/// The transmission from the modes in `scratch`, and each sample's failure flag; whether any failed.
+bool transmit_and_flag(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch, bool terms) {
     if (terms) {
         transmission_of_both_sides<true, false>(crystal, polars, scratch);
     } else if (crystal.with_plate) {
@@ -421,7 +417,20 @@ bool run_kernel(const SampleCrystal& crystal, const PolarizerPair& polars, Kerne
         failed[i] = f00[i] | f01[i] | f10[i] | f11[i] | (1 - finite);
         failures += failed[i];
     }
-    const bool any_failed = failures != 0;
+    return failures != 0;
+}
+
+}  // namespace
+
+bool run_kernel(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch, bool warm, bool terms) {
+    if (crystal.uniaxial) {
+        solve_side<true, 0>(crystal, scratch, warm);
+        solve_side<true, 1>(crystal, scratch, warm);
+    } else {
+        solve_side<false, 0>(crystal, scratch, warm);
+        solve_side<false, 1>(crystal, scratch, warm);
+    }
+    const bool any_failed = transmit_and_flag(crystal, polars, scratch, terms);
     // The next run may start from these roots only if all of them are good.
     scratch.warm_ready = !any_failed;
     const int padded = static_cast<int>(crystal.padded_size());
@@ -436,6 +445,10 @@ bool run_kernel(const SampleCrystal& crystal, const PolarizerPair& polars, Kerne
         previous_y1[i] = -xi_y[i];
     }
     return any_failed;
+}
+
+bool retransmit(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch) {
+    return transmit_and_flag(crystal, polars, scratch, false);
 }
 
 }  // namespace petroscope::detail

@@ -85,4 +85,10 @@ void set_sample_directions(KernelScratch& scratch, std::size_t first, std::size_
 bool run_kernel(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch, bool warm,
                 bool terms = false);
 
+/// The transmission through other polars and another plate from the modes that a run_kernel left in
+/// `scratch`, for `crystal` with the same frames and directions (only its plate may differ); flags failures
+/// as run_kernel does and leaves the warm start alone. The modes are most of the work: figures that differ
+/// only in polars and plate cost little more than one (the live microscope's stage harmonics).
+bool retransmit(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch);
+
 }  // namespace petroscope::detail

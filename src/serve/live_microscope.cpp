@@ -1,5 +1,7 @@
 #include "petroscope/serve/live_microscope.hpp"
 
+#include "render_thread.hpp"
+
 #include "petroscope/api/grain_optics.hpp"
 #include "petroscope/core/error.hpp"
 #include "petroscope/core/text.hpp"
@@ -12,12 +14,16 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <fstream>
+#include <stdlib.h>
 
 namespace petroscope::serve {
 namespace {
 
 constexpr std::uint32_t kHarmonicsMagic = 0x31485350;  // "PSH1" read little-endian
 constexpr std::size_t kRandomSectionsKept = 16;
+constexpr std::size_t kUploadsKept = 8;
+constexpr std::string_view kUploadPrefix = "upload-";
 /// Where a grain's numbers are given in white light: the peak of the photopic luminous efficiency.
 constexpr double kWhiteLightNumbersNm = 555.0;
 
@@ -72,6 +78,57 @@ nlohmann::json grain_json(const GrainOptics& optics) {
             {"optic_sign", mineral.sign}};
 }
 
+/// A file's own name as it may appear in a description: a plain name, no folders, printable.
+bool plain_file_name(std::string_view name) {
+    if (name.empty() || name.size() > 255 || name == "." || name == "..") return false;
+    return std::all_of(name.begin(), name.end(), [](char c) { return c != '/' && c != '\\' && static_cast<unsigned char>(c) >= 0x20; });
+}
+
+/// The width and height in a PNG's IHDR chunk (big-endian at bytes 16 … 23), before anything decodes it.
+std::pair<std::uint32_t, std::uint32_t> png_size(const UploadedFile& file) {
+    static constexpr std::string_view kSignature("\x89PNG\r\n\x1a\n", 8);
+    const std::string& bytes = file.content;
+    if (bytes.size() < 24 || std::string_view(bytes).substr(0, 8) != kSignature) {
+        throw InputError(quote_input(file.filename) + " is not a PNG file; a section sent to the server has PNG grain maps only");
+    }
+    const auto word = [&](std::size_t at) {
+        std::uint32_t value = 0;
+        for (std::size_t k = 0; k < 4; ++k) value = (value << 8) | static_cast<unsigned char>(bytes[at + k]);
+        return value;
+    };
+    return {word(16), word(20)};
+}
+
+void replace_all(std::string& text, const std::string& from, const std::string& to) {
+    for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size())) text.replace(at, from.size(), to);
+}
+
+/// A folder of this process's own, removed with everything in it when the object goes.
+class PrivateFolder {
+public:
+    PrivateFolder() {
+        std::string pattern = (std::filesystem::temp_directory_path() / "petroscope-upload-XXXXXX").string();
+        if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("cannot create a temporary folder for a section sent to the server");
+        path_ = pattern;
+    }
+    ~PrivateFolder() {
+        std::error_code ignored;
+        std::filesystem::remove_all(path_, ignored);
+    }
+    PrivateFolder(const PrivateFolder&) = delete;
+    PrivateFolder& operator=(const PrivateFolder&) = delete;
+    const std::filesystem::path& path() const { return path_; }
+
+private:
+    std::filesystem::path path_;
+};
+
+void write_bytes(const std::filesystem::path& path, const std::string& bytes) {
+    std::ofstream file(path, std::ios::binary);
+    file.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    if (!file) throw std::runtime_error("cannot write a section sent to the server to its temporary folder");
+}
+
 }  // namespace
 
 std::string encode_stage_harmonics(const StageHarmonics& harmonics) {
@@ -89,7 +146,7 @@ std::string encode_stage_harmonics(const StageHarmonics& harmonics) {
 }
 
 LiveMicroscope::LiveMicroscope(const MineralCatalog& catalog, const std::filesystem::path& web_dir, const std::filesystem::path& sections_dir)
-    : catalog_(catalog), sections_dir_(sections_dir) {
+    : catalog_(catalog), sections_dir_(sections_dir), render_thread_(std::make_unique<RenderThread>()) {
     for (const auto& entry : std::filesystem::directory_iterator(web_dir)) {
         const std::filesystem::path& file = entry.path();
         const std::string extension = file.extension().string();
@@ -104,6 +161,8 @@ LiveMicroscope::LiveMicroscope(const MineralCatalog& catalog, const std::filesys
     std::sort(section_names_.begin(), section_names_.end());
     section_names_.push_back("random");
 }
+
+LiveMicroscope::~LiveMicroscope() = default;
 
 Reply LiveMicroscope::get(std::string_view path, const QueryParameters& query) const {
     try {
@@ -140,6 +199,11 @@ Reply LiveMicroscope::catalog_reply() const {
 }
 
 std::shared_ptr<const ThinSection> LiveMicroscope::section(const QueryParameters& query) const {
+    if (const std::optional<std::string> sent = query.text("section"); sent && sent->rfind(kUploadPrefix, 0) == 0) {
+        const std::lock_guard<std::mutex> lock(sections_mutex_);
+        if (const auto found = uploads_.find(*sent); found != uploads_.end()) return found->second;
+        throw InputError(parameter_message("section", "no section " + quote_input(*sent) + " was sent to this server (or it was dropped to make room)"));
+    }
     const std::string name = query.choice("section", section_names_);
     const std::string key = name == "random" ? "random " + std::to_string(query.integer("seed", 0, 2147483647, 1)) : name;
     const std::lock_guard<std::mutex> lock(sections_mutex_);
@@ -156,17 +220,70 @@ Reply LiveMicroscope::view_reply(const QueryParameters& query) const {
     query.refuse_unknown(view_parameter_names());
     const SectionLookup sections = [this](const QueryParameters& q) { return section(q); };
     const bool conoscope = query.choice("optics", {"orthoscope", "conoscope"}) == "conoscope";
-    StageHarmonics harmonics;
+    const Illumination illumination = illumination_from(query);
     if (conoscope) {
         const ConoscopeRequest request = conoscope_view_request(query, catalog_, sections);
-        const std::lock_guard<std::mutex> lock(render_mutex_);
-        harmonics = conoscope_stage_harmonics(request, catalog_);
-    } else {
-        const OrthoscopeRequest request = orthoscope_view_request(query, catalog_, sections);
-        const std::lock_guard<std::mutex> lock(render_mutex_);
-        harmonics = orthoscope_stage_harmonics(request, catalog_);
+        return render_thread_->run([&] { return Reply{200, "application/octet-stream", encode_stage_harmonics(conoscope_stage_harmonics(request, catalog_, illumination))}; });
     }
-    return {200, "application/octet-stream", encode_stage_harmonics(harmonics)};
+    const OrthoscopeRequest request = orthoscope_view_request(query, catalog_, sections);
+    return render_thread_->run([&] { return Reply{200, "application/octet-stream", encode_stage_harmonics(orthoscope_stage_harmonics(request, catalog_, illumination))}; });
+}
+
+ThinSection LiveMicroscope::read_upload(const std::vector<UploadedFile>& files) const {
+    const UploadedFile* description = nullptr;
+    std::vector<const UploadedFile*> maps;
+    for (const UploadedFile& file : files) {
+        if (file.field == "description" && description == nullptr) {
+            description = &file;
+        } else if (file.field == "map") {
+            if (!plain_file_name(file.filename)) throw InputError("a grain map's file name must be a plain name, got " + quote_input(file.filename));
+            const auto [width, height] = png_size(file);
+            if (width > static_cast<std::uint32_t>(kUploadMaxSidePx) || height > static_cast<std::uint32_t>(kUploadMaxSidePx)) {
+                throw InputError(quote_input(file.filename) + " is " + std::to_string(width) + "x" + std::to_string(height) +
+                                 " pixels; a section sent to the server may have at most " + std::to_string(kUploadMaxSidePx) + " per side");
+            }
+            maps.push_back(&file);
+        } else {
+            throw InputError("unexpected form field " + quote_input(file.field, 40) + "; expected one 'description' and its grain maps as 'map'");
+        }
+    }
+    if (description == nullptr) throw InputError("no section description: send its section.txt as 'description' with its grain map as 'map'");
+    const PrivateFolder folder;
+    write_bytes(folder.path() / "section.txt", description->content);
+    for (std::size_t k = 0; k < maps.size(); ++k) write_bytes(folder.path() / ("map-" + std::to_string(k) + ".png"), maps[k]->content);
+    const auto map_path = [&](const std::string& name) {
+        for (std::size_t k = 0; k < maps.size(); ++k) {
+            if (maps[k]->filename == name) return folder.path() / ("map-" + std::to_string(k) + ".png");
+        }
+        throw InputError(quote_input(name) + " was not sent with the description (send the maps it names beside it)");
+    };
+    try {
+        ThinSection section = read_thin_section(folder.path() / "section.txt", catalog_, map_path);
+        section.note = "sent to the server as " + quote_input(description->filename);
+        return section;
+    } catch (const InputError& error) {  // messages name the files as the user knows them, not the private folder
+        std::string message = error.what();
+        replace_all(message, (folder.path() / "section.txt").string(), quote_input(description->filename));
+        for (std::size_t k = 0; k < maps.size(); ++k) replace_all(message, (folder.path() / ("map-" + std::to_string(k) + ".png")).string(), quote_input(maps[k]->filename));
+        throw InputError(message);
+    }
+}
+
+Reply LiveMicroscope::post_section(const std::vector<UploadedFile>& files) const {
+    try {
+        const auto section = std::make_shared<const ThinSection>(read_upload(files));
+        const std::lock_guard<std::mutex> lock(sections_mutex_);
+        ++upload_count_;
+        uploads_.erase(std::string(kUploadPrefix) + std::to_string(upload_count_ - static_cast<int>(kUploadsKept)));  // the oldest kept
+        const std::string key = std::string(kUploadPrefix) + std::to_string(upload_count_);
+        uploads_[key] = section;
+        return json_reply({{"section", key}, {"name", section->name}, {"width_px", section->width_px}, {"height_px", section->height_px},
+                           {"grains", section->grains.size()}});
+    } catch (const InputError& error) {
+        return json_reply({{"error", std::string(error.what())}}, 400);
+    } catch (const std::exception& error) {
+        return json_reply({{"error", std::string("internal error: ") + error.what()}}, 500);
+    }
 }
 
 Reply LiveMicroscope::grain_reply(const QueryParameters& query) const {

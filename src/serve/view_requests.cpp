@@ -83,8 +83,12 @@ const Mineral& mineral_from(const QueryParameters& query, const MineralCatalog& 
 
 }  // namespace
 
+Illumination illumination_from(const QueryParameters& query) {
+    return query.choice("polarizer", {"in", "out"}) == "in" ? Illumination::polarized : Illumination::unpolarized;
+}
+
 const std::vector<std::string>& view_parameter_names() {
-    static const std::vector<std::string> names{"optics", "wavelength_nm", "illuminant", "analyzer", "plate", "wedge_position", "section",
+    static const std::vector<std::string> names{"optics", "wavelength_nm", "illuminant", "polarizer", "analyzer", "plate", "wedge_position", "section",
                                                 "seed", "x", "y", "mineral", "cut", "euler", "azimuth_deg", "tilt_deg", "thickness_um",
                                                 "condenser_na", "na", "size_px"};
     return names;

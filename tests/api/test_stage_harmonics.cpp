@@ -85,6 +85,24 @@ TEST(StageHarmonics, ConoscopeComposedAtQuarterTurnsIsTheRenderThere) {
     }
 }
 
+// Unpolarized light and no analyzer: the eye sees ½·tr(J J†), which turning the crystal does not change
+// (tr(R J Rᵀ R J† Rᵀ) = tr(J J†)), even with biotite's pleochroism; every stage harmonic but c₀ vanishes.
+TEST(StageHarmonics, WithoutPolarizerAndAnalyzerNothingDependsOnTheStage) {
+    OrthoscopeRequest request;
+    request.section = random_voronoi_section({"biotite", "calcite", "quartz"}, {}, 8, 32, 10.0, 30.0, 5);
+    request.section.validate();
+    request.analyzer_in = false;
+    const StageHarmonics harmonics = orthoscope_stage_harmonics(request, minerals(), Illumination::unpolarized);
+    double largest_c0 = 0.0, largest_other = 0.0;
+    for (std::size_t k = 0; k < harmonics.coefficients.pixels.size(); ++k) {
+        const double value = std::fabs(harmonics.coefficients.pixels[k]);
+        if (k % kStageHarmonicChannels < 3) largest_c0 = std::max(largest_c0, value);
+        else largest_other = std::max(largest_other, value);
+    }
+    EXPECT_GT(largest_c0, 0.5);
+    EXPECT_LT(largest_other, 1e-6);
+}
+
 TEST(StageHarmonics, ARequestWithAStageIsRefused) {
     ConoscopeRequest request;
     request.stage_deg = 10.0;

@@ -318,6 +318,12 @@ class Page:
         self.send("Input.dispatchKeyEvent", {**params, **down})
         self.send("Input.dispatchKeyEvent", {**params, "type": "keyUp"})
 
+    def set_file_input(self, selector, paths):
+        """Choose files in the <input type=file> matching selector, as a user does (change fires)."""
+        root = self.send("DOM.getDocument")["root"]["nodeId"]
+        node = self.send("DOM.querySelector", {"nodeId": root, "selector": selector})["nodeId"]
+        self.send("DOM.setFileInputFiles", {"files": [os.path.abspath(p) for p in paths], "nodeId": node})
+
     def set_viewport(self, width, height):
         """Emulate a width x height viewport at device scale factor 1."""
         self.send("Emulation.setDeviceMetricsOverride", {

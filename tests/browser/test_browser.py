@@ -190,6 +190,19 @@ def test_the_bertrand_lens_shows_the_centred_cross_of_calcite_cut_across_its_axi
         turn_stage_by_keys(page, 30)
 
 
+def test_a_section_of_ones_own_is_sent_and_shown(page, tmp_path):
+    """A section made with `petroscope section random` (calcite only), chosen in the page's file input as
+    a user would: the server reads it, the page shows it, the numbers name its mineral."""
+    folder = tmp_path / "my-calcite"
+    subprocess.run([BINARY, "section", "random", "--minerals", "calcite", "--grains", "3", "--size", "96", "--name", "my calcite",
+                    "-o", str(folder)], check=True, capture_output=True)
+    page.set_file_input("#section-files", [folder / "section.txt", folder / "grains.png"])
+    page.wait_for("document.getElementById('section').value.startsWith('upload-')", timeout_s=30)
+    wait_until_drawn(page)
+    assert page.evaluate("petroscope.state.view.width") == 96
+    page.wait_for("petroscope.state.numbers && petroscope.state.numbers.mineral === 'calcite'", timeout_s=30)
+
+
 def test_the_frame_rate_while_dragging(page):
     """Every pointer move redraws the view; the rate and the time per frame are reported."""
     x, y = canvas_centre(page)

@@ -83,9 +83,62 @@ def test_a_page_of_another_site_cannot_reach_the_server(port):
     assert status == 403
 
 
+def multipart(files):
+    """A multipart/form-data body of (field, filename, bytes), as a browser's FormData sends it."""
+    boundary = "petroscope-test-boundary"
+    parts = [f'--{boundary}\r\nContent-Disposition: form-data; name="{field}"; filename="{name}"\r\n'
+             f"Content-Type: application/octet-stream\r\n\r\n".encode() + content + b"\r\n" for field, name, content in files]
+    return b"".join(parts) + f"--{boundary}--\r\n".encode(), f"multipart/form-data; boundary={boundary}"
+
+
+def post_section(port, files):
+    body, content_type = multipart(files)
+    connection = http.client.HTTPConnection("127.0.0.1", port, timeout=60)
+    try:
+        connection.request("POST", "/api/section", body=body, headers={"Content-Type": content_type, "Host": f"127.0.0.1:{port}"})
+        response = connection.getresponse()
+        return response.status, json.loads(response.read())
+    finally:
+        connection.close()
+
+
+def example_files(name="granite"):
+    folder = os.path.join(os.environ["PETROSCOPE_SOURCE_DIR"], "thin_sections", name)
+    with open(os.path.join(folder, "section.txt"), "rb") as description, open(os.path.join(folder, "grains.png"), "rb") as grains:
+        return description.read(), grains.read()
+
+
+def test_a_section_sent_to_the_server_is_viewed_by_the_name_it_gets(port):
+    description, grains = example_files()
+    status, answer = post_section(port, [("description", "section.txt", description), ("map", "grains.png", grains)])
+    assert status == 200, answer
+    assert answer["grains"] > 100 and answer["width_px"] == 512
+    status, body = request(port, view(section=answer["section"]))
+    assert status == 200 and int.from_bytes(body[4:8], "little") == 512
+
+
+def test_a_section_sent_to_the_server_reads_nothing_but_what_was_sent(port):
+    description, grains = example_files()
+    cases = [
+        ([("map", "grains.png", grains)], "no section description"),
+        ([("description", "section.txt", description), ("map", "../grains.png", grains)], "plain name"),
+        ([("description", "section.txt", description), ("map", "grains.png", b"GIF89a" + grains)], "is not a PNG file"),
+        ([("description", "section.txt", description.replace(b"grain_map: grains.png", b"grain_map: /etc/passwd")),
+          ("map", "grains.png", grains)], "'/etc/passwd' was not sent with the description"),
+        ([("description", "mine.txt", description.replace(b"pixel_size_um: 8", b"pixel_size_um: -8")), ("map", "grains.png", grains)],
+         "'mine.txt':"),
+    ]
+    for files, expected in cases:
+        status, answer = post_section(port, files)
+        assert status == 400 and expected in answer["error"], (expected, answer)
+        assert "petroscope-upload-" not in answer["error"]  # the private folder stays private
+
+
 def test_oversized_bodies_and_queries_are_refused(port):
-    status, _ = request(port, "/api/view", method="POST", body=b"x" * (4 << 20))
-    assert status in (0, 404, 413)  # refused before or after reading the cap; never served
+    status, _ = request(port, "/api/section", method="POST", body=b"x" * (17 << 20))
+    assert status in (0, 413)  # refused before or after reading the cap; never served
+    status, _ = request(port, "/api/view", method="POST", body=b"x")
+    assert status == 404
     status, _ = request(port, "/api/view?mineral=" + "q" * 20000)
     assert status in (400, 414)
     assert request(port, "/api/catalog")[0] == 200

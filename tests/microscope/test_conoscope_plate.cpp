@@ -8,7 +8,11 @@
 #include "petroscope/spectral/color.hpp"
 #include "petroscope/spectral/wavelength_grid.hpp"
 
+#include "petroscope/core/error.hpp"
+
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 namespace petroscope {
 namespace {
@@ -48,6 +52,32 @@ TEST(ConoscopePlate, NegativeOpticAxisFigureIsTheReverse) {
     EXPECT_GT(b[2], 10.0);
     EXPECT_LT(b[1], -10.0);
     EXPECT_LT(b[3], -10.0);
+}
+
+// Figures that differ only in polars and plate share each point's eigenmodes (render_conoscope_polarization_set);
+// each equals its own render: a biaxial crystal off-centre (some points near a binormal go to the
+// reference path), with and without analyzer and plates.
+TEST(ConoscopePlate, FiguresSharingTheirModesEqualTheirOwnRenders) {
+    const Mineral& muscovite = testing::repository_minerals().find("muscovite");
+    ConoscopeSettings base = testing::figure_settings(muscovite, Cut::acute_bisectrix, 60.0, 64);
+    base.wavelengths_nm = WavelengthGrid{380.0, 780.0, 10.0}.wavelengths_nm();
+    const SpectralIntegrator integrator(base.wavelengths_nm, load_cie_1931_observer(), load_light_source("D65"));
+    std::vector<ConoscopeSettings> settings(4, base);
+    settings[1].analyzer_in = false;
+    settings[2].plate = make_accessory_plate(PlateKind::gypsum, testing::repository_minerals().find("gypsum"), 45.0);
+    settings[3].plate = make_accessory_plate(PlateKind::mica, muscovite, 10.0);
+    settings[3].polarizer_deg = 30.0;
+    settings[3].analyzer_deg = 75.0;
+    const std::vector<Image> shared = render_conoscope_polarization_set(settings, testing::indices_of(muscovite), integrator);
+    ASSERT_EQ(shared.size(), settings.size());
+    for (std::size_t k = 0; k < settings.size(); ++k) {
+        const Image alone = render_conoscope(settings[k], testing::indices_of(muscovite), &integrator);
+        double largest = 0.0;
+        for (std::size_t p = 0; p < alone.pixels.size(); ++p) largest = std::max(largest, double(std::fabs(alone.pixels[p] - shared[k].pixels[p])));
+        EXPECT_LE(largest, 1e-7) << "figure " << k;  // float images of the same double computations
+    }
+    settings[1].thickness_um = 61.0;
+    EXPECT_THROW(render_conoscope_polarization_set(settings, testing::indices_of(muscovite), integrator), InputError);
 }
 
 }  // namespace

@@ -85,6 +85,30 @@ TEST(LiveMicroscope, TheBertrandViewOfAPickedGrainIsThatGrainsFigure) {
     EXPECT_EQ(grain["thickness_um"].get<double>(), 30.0);
 }
 
+std::vector<UploadedFile> granite_files() {
+    const std::filesystem::path folder = std::filesystem::path(PETROSCOPE_SOURCE_DIR) / "thin_sections" / "granite";
+    return {{"description", "section.txt", read_text_file(folder / "section.txt")}, {"map", "grains.png", read_text_file(folder / "grains.png")}};
+}
+
+// A section sent to the server is the section read from its folder, viewed by the name it gets.
+TEST(LiveMicroscope, ASectionSentIsTheSameSectionUnderANewName) {
+    const Reply reply = microscope().post_section(granite_files());
+    ASSERT_EQ(reply.status, 200) << reply.body;
+    const std::string name = nlohmann::json::parse(reply.body)["section"];
+    EXPECT_EQ(name.rfind("upload-", 0), 0u);
+    const auto numbers = [&](const std::string& section) { return nlohmann::json::parse(get("/api/grain", {{"section", section}, {"x", "77"}, {"y", "301"}}).body); };
+    EXPECT_EQ(numbers(name), numbers("granite"));
+}
+
+TEST(LiveMicroscope, ASectionSentMayNameOnlyTheFilesSentWithIt) {
+    std::vector<UploadedFile> files = granite_files();
+    const std::string original = files[0].content;
+    files[0].content.replace(original.find("grain_map: grains.png"), 21, "grain_map: ../granite/grains.png");
+    const Reply reply = microscope().post_section(files);
+    EXPECT_NE(error_of(reply).find("'../granite/grains.png' was not sent with the description"), std::string::npos);
+    EXPECT_EQ(error_of(get("/api/view", {{"section", "upload-999"}})).find("parameter 'section': no section 'upload-999'"), 0u);
+}
+
 TEST(LiveMicroscope, BadInputIsRefusedNamingTheParameter) {
     EXPECT_EQ(error_of(get("/api/view", {{"thickness_um", "-1"}})), "parameter 'thickness_um': expected a number from 0.01 to 1e+05, got '-1'");
     EXPECT_NE(error_of(get("/api/view", {{"section", "../../etc"}})).find("parameter 'section': expected one of"), std::string::npos);

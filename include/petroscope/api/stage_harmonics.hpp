@@ -42,14 +42,21 @@ struct StageHarmonics {
     std::string illuminant;  // as DisplayImage::illuminant
 };
 
+/// The light below the specimen.
+enum class Illumination {
+    polarized,    // through the polarizer (the request's polarizer_deg)
+    unpolarized,  // the polarizer out: the mean of two renders with the polarizer at 90° to each other
+                  // (unpolarized light is an incoherent equal mixture of any two orthogonal polarizations)
+};
+
 /// The 5 harmonics of a figure (its stage_deg must be 0: every stage is composed from the result). Throws
 /// InputError as plan_conoscope does, Cancelled when `progress` says stop.
 StageHarmonics conoscope_stage_harmonics(const ConoscopeRequest& request, const MineralCatalog& catalog,
-                                         const ProgressCallback& progress = {});
+                                         Illumination illumination = Illumination::polarized, const ProgressCallback& progress = {});
 /// The same for a thin section; outside the turned section the light crosses glass and balsam at the
 /// section's thickness in the middle of the field, as in render_orthoscope.
 StageHarmonics orthoscope_stage_harmonics(const OrthoscopeRequest& request, const MineralCatalog& catalog,
-                                          const ProgressCallback& progress = {});
+                                          Illumination illumination = Illumination::polarized, const ProgressCallback& progress = {});
 
 /// The picture at `stage_deg` in linear sRGB (3 channels): what the browser composes on every frame.
 Image compose_at_stage(const StageHarmonics& harmonics, double stage_deg);

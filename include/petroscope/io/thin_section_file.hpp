@@ -5,6 +5,7 @@
 #include "petroscope/minerals/mineral_catalog.hpp"
 
 #include <filesystem>
+#include <functional>
 #include <string>
 
 namespace petroscope {
@@ -23,6 +24,12 @@ std::filesystem::path thin_section_description_path(const std::filesystem::path&
 /// the mineral's principal indices at its reference wavelength. Throws InputError as "file:line: what was
 /// expected" (or "file: …" for what has no line, such as a label of the map without a grain entry).
 ThinSection read_thin_section(const std::filesystem::path& description_or_dir, const MineralCatalog& catalog);
+
+/// Where the maps a description names are: the file for a name as written, or an InputError for a name
+/// the caller does not allow (a section sent to the server names only the files sent with it).
+using ThinSectionMapResolver = std::function<std::filesystem::path(const std::string& name_as_written)>;
+/// Reads the description file `description` with its maps found by `map_path`.
+ThinSection read_thin_section(const std::filesystem::path& description, const MineralCatalog& catalog, const ThinSectionMapResolver& map_path);
 
 /// The description text write_thin_section writes, naming the maps by their fixed names. Numbers are
 /// written in the shortest form that reads back as the same double; orientations as ZYZ Euler angles

@@ -89,4 +89,11 @@ private:
 Image render_conoscope(const ConoscopeSettings& settings, const PrincipalIndexFunction& principal_n,
                        const SpectralIntegrator* integrator, const ProgressCallback& progress = {});
 
+/// White-light figures of one crystal that differ only in polarizer, analyzer and plate (the same stage,
+/// thickness, wavelengths, NA, size and surround, the slab immersed): each image point's eigenmodes are
+/// solved once for all of them, which is most of the work. Each image is render_conoscope's for its
+/// settings. Throws InputError when the settings differ otherwise or have a mounting.
+std::vector<Image> render_conoscope_polarization_set(const std::vector<ConoscopeSettings>& settings, const PrincipalIndexFunction& principal_n,
+                                                     const SpectralIntegrator& integrator, const ProgressCallback& progress = {});
+
 }  // namespace petroscope

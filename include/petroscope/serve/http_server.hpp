@@ -11,7 +11,7 @@ namespace petroscope::serve {
 struct ServeSettings {
     std::string host = "127.0.0.1";  // loopback unless told otherwise
     int port = 8765;                 // 0: any free port
-    std::size_t max_body_bytes = 1 << 20;
+    std::size_t max_body_bytes = 16 << 20;  // a section sent from the page: its description and grain map
     bool verbose = false;            // one line per request on standard error
 };
 

@@ -4,6 +4,7 @@
 // parameters and their limits: docs/browser.md ("The server's API").
 #include "petroscope/api/conoscope_figure.hpp"
 #include "petroscope/api/orthoscope_image.hpp"
+#include "petroscope/api/stage_harmonics.hpp"
 #include "petroscope/microscope/thin_section.hpp"
 #include "petroscope/serve/query.hpp"
 
@@ -43,6 +44,9 @@ OrthoscopeRequest orthoscope_view_request(const QueryParameters& query, const Mi
 /// The view through the Bertrand lens: the grain picked in a section (`section`, `x`, `y`) or a single
 /// crystal; `na`, `size_px`; light, polars and plate.
 ConoscopeRequest conoscope_view_request(const QueryParameters& query, const MineralCatalog& catalog, const SectionLookup& sections);
+
+/// `polarizer`: in (default) or out (unpolarized light).
+Illumination illumination_from(const QueryParameters& query);
 
 /// The parameters every view takes besides the specimen's.
 const std::vector<std::string>& view_parameter_names();
