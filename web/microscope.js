@@ -11,8 +11,8 @@ const CACHE_LIMIT = 12;               // views kept (a 512² view is 15.7 MB)
 const PREVIEW_FIGURE_PX = 128;        // a conoscopic figure's first, quick picture
 
 const state = { stageDeg: 0, pick: null, view: null, viewKey: "", dirty: true, numbers: null };
-const stats = { frames: 0, composeMs: [] };
-window.petroscope = { state, stats, ready: false, errors: [] };
+const stats = { frames: 0, composeMs: [], fetches: 0, viewMs: [] };
+window.petroscope = { state, stats, ready: false, prefetching: false, errors: [] };
 
 // ---- the view's query ------------------------------------------------------------------------------
 
@@ -25,8 +25,13 @@ function specimenParams() {
     if (state.pick) { params.set("x", state.pick.x); params.set("y", state.pick.y); }
   } else {
     params.set("mineral", $("mineral").value);
-    params.set("cut", $("cut").value);
-    params.set("tilt_deg", $("tilt").value || "0");
+    if ($("euler").value.trim() !== "") {
+      params.set("euler", $("euler").value.trim());
+    } else {
+      params.set("cut", $("cut").value);
+      params.set("tilt_deg", $("tilt").value || "0");
+      params.set("azimuth_deg", $("azimuth").value || "0");
+    }
     params.set("thickness_um", $("crystal-thickness").value || "30");
   }
   if (document.querySelector('input[name="light"]:checked').value === "mono") params.set("wavelength_nm", $("wavelength").value);
@@ -71,6 +76,7 @@ function decodeHarmonics(buffer) {
 }
 
 async function fetchView(query) {
+  stats.fetches++;
   const response = await fetch("api/view?" + query);
   if (!response.ok) throw new Error((await response.json()).error);
   return decodeHarmonics(await response.arrayBuffer());
@@ -88,6 +94,7 @@ function view(query) {
 
 /// Shows the current view: from the cache at once, else (a figure) a quick small one first, then the full one.
 async function refresh() {
+  const started = performance.now();
   const query = viewQuery();
   state.viewKey = query;
   window.petroscope.ready = false;
@@ -101,6 +108,7 @@ async function refresh() {
     const full = await view(query);
     if (state.viewKey !== query) return;
     show(full);
+    stats.viewMs.push(performance.now() - started);
     setStatus("ready");
     window.petroscope.ready = true;
   } catch (error) {
@@ -120,7 +128,7 @@ function show(decoded) {
 let prefetching = false;
 async function prefetchVariants() {
   if (prefetching) return;
-  prefetching = true;
+  prefetching = window.petroscope.prefetching = true;
   const variants = [{ analyzer: !$("analyzer").checked }, { plate: "gypsum" }, { plate: "mica" }, { plate: "none" }];
   for (const variant of variants) {
     if (foregroundPending > 0) break;
@@ -128,7 +136,7 @@ async function prefetchVariants() {
     if (cache.has(query)) continue;
     try { await view(query); } catch (error) { break; }
   }
-  prefetching = false;
+  prefetching = window.petroscope.prefetching = false;
 }
 
 // ---- composing a frame ---------------------------------------------------------------------------------
@@ -373,7 +381,7 @@ async function start() {
   fillSelect($("section"), catalog.sections, "granite");
   fillSelect($("mineral"), catalog.minerals.map((m) => m.name), "calcite");
   fillSelect($("cut"), catalog.cuts, "optic-axis");
-  for (const id of ["section", "seed", "section-thickness", "mineral", "cut", "tilt", "crystal-thickness"]) $(id).addEventListener("change", specimenChanged);
+  for (const id of ["section", "seed", "section-thickness", "mineral", "cut", "tilt", "azimuth", "euler", "crystal-thickness"]) $(id).addEventListener("change", specimenChanged);
   for (const input of document.querySelectorAll('input[name="specimen"]')) input.addEventListener("change", specimenChanged);
   for (const id of ["polarizer", "analyzer", "plate", "wedge", "condenser", "bertrand", "illuminant"]) $(id).addEventListener("change", refresh);
   $("plate").addEventListener("change", () => { $("wedge-label").hidden = $("plate").value !== "wedge"; });

@@ -168,7 +168,7 @@ void solve_vibrations(const SampleCrystal& crystal, KernelScratch& scratch) {
         const double s_x = -rho_y, s_y = rho_x;  // ŝ = ẑ × ρ̂
         const double xi2 = xi_x * xi_x + xi_y * xi_y;
         const double q = q_in[i];
-        // Vibration direction (physics notes §2) from unnormalised projections of the binormals on the
+        // Vibration direction (docs/theory.md §1, "Eigenmodes") from unnormalised projections of the binormals on the
         // plane ⟂ N, vᵢ = |N|²bᵢ − (N·bᵢ)N: S = |v₂|v₁ + |v₁|v₂ ∥ p̂₁ + p̂₂ (slow) and
         // T = |v₂|v₁ − |v₁|v₂ ∥ p̂₁ − p̂₂ (fast), orthogonal whatever rounding did to the vᵢ because the
         // weights are their computed norms; the longer is used, the other mode's is N × it.

@@ -59,6 +59,7 @@ def microscope(page):
         document.getElementById('plate').value = 'none';
         document.getElementById('analyzer').checked = true;
         document.getElementById('bertrand').checked = false;
+        document.getElementById('euler').value = '';
         document.getElementById('section').dispatchEvent(new Event('change'));
         const stage = document.getElementById('stage'); stage.value = '0'; stage.dispatchEvent(new Event('change'));
     })()""")
@@ -188,6 +189,31 @@ def test_the_bertrand_lens_shows_the_centred_cross_of_calcite_cut_across_its_axi
         between = [image[centre + d, centre + d], image[centre - d, centre - d], image[centre + d, centre - d], image[centre - d, centre + d]]
         assert max(on_arms) < 0.15 * min(between), (on_arms, between)
         turn_stage_by_keys(page, 30)
+
+
+def test_pushing_a_plate_in_needs_no_server_once_the_page_has_fetched_it(page):
+    """While idle the page fetches the views one click away; pushing the gypsum plate in then draws at
+    once from what it holds (no request), and the time from the click to the drawn view is reported."""
+    page.wait_for("!petroscope.prefetching && petroscope.stats.fetches >= 4", timeout_s=60)
+    fetches = page.evaluate("petroscope.stats.fetches")
+    choose(page, "plate", "gypsum")
+    choose(page, "plate", "none")
+    assert page.evaluate("petroscope.stats.fetches") == fetches
+    shown_ms = page.evaluate("petroscope.stats.viewMs.slice(-2)")
+    print("browser: plate in, plate out, drawn after (ms):", shown_ms)
+
+
+def test_a_crystal_given_by_euler_angles(page):
+    """Euler angles instead of a cut: calcite with its optic axis turned onto the microscope axis by
+    b = 0 shows the same centred cross as the optic-axis cut."""
+    page.evaluate("document.querySelector('input[name=specimen][value=crystal]').click()")
+    choose(page, "mineral", "calcite")
+    choose(page, "euler", "0,0,0")
+    set_checkbox(page, "bertrand", True)
+    image = canvas_rgb(page).sum(axis=2)
+    centre, r = VIEW // 2, 150
+    assert image[centre, centre + r] < 0.15 * image[centre + 106, centre + 106]
+    choose(page, "euler", "")
 
 
 def test_a_section_of_ones_own_is_sent_and_shown(page, tmp_path):

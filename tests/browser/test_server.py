@@ -1,13 +1,16 @@
 """`petroscope serve` under load and abuse, over real sockets: many clients at once asking for views,
-numbers and files, bad parameters, foreign Host headers, oversized bodies and long queries. Every request
-gets its expected status, the server stays up, and Ctrl-C still stops it cleanly."""
+numbers and files, bad parameters, foreign Host headers, oversized bodies and long queries, sections that
+name other files, and a seeded run of malformed raw requests. Every request gets its expected status (never
+a server error), the server stays up, its memory comes back, and Ctrl-C still stops it cleanly."""
 
 import concurrent.futures
 import http.client
 import json
 import os
+import random
 import re
 import signal
+import socket
 import subprocess
 import time
 import urllib.parse
@@ -19,14 +22,24 @@ pytestmark = pytest.mark.skipif(not BINARY, reason="needs the petroscope binary"
 
 
 @pytest.fixture(scope="module")
-def port():
+def server():
     process = subprocess.Popen([BINARY, "serve", "--port", "0"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     line = process.stdout.readline()
     match = re.search(r"http://127\.0\.0\.1:(\d+)/", line)
     assert match, "no address printed: " + line + process.stderr.read()
-    yield int(match.group(1))
+    yield process, int(match.group(1))
     process.send_signal(signal.SIGINT)
     assert process.wait(timeout=20) == 0, process.stderr.read()
+
+
+@pytest.fixture(scope="module")
+def port(server):
+    return server[1]
+
+
+def resident_kib(process):
+    with open(f"/proc/{process.pid}/status") as status:
+        return int(re.search(r"VmRSS:\s+(\d+) kB", status.read()).group(1))
 
 
 def request(port, path, method="GET", body=None, host=None):
@@ -50,8 +63,7 @@ def view(**parameters):
 # (path, expected status): what a busy classroom and a careless script send at once.
 MIXED_LOAD = [
     ("/", 200), ("/microscope.js", 200), ("/api/catalog", 200),
-    (view(mineral="quartz", cut="optic-axis", tilt_deg=50), 200),
-    (view(mineral="calcite", cut="optic-axis", optics="conoscope", size_px=64), 200),
+    (view(mineral="calcite", cut="optic-axis", optics="conoscope", size_px=64, plate="gypsum"), 200),
     ("/api/grain?section=granite&x=10&y=20", 200),
     (view(thickness_um="-3"), 400), (view(section="../../etc/passwd"), 400), (view(size_px=99999, optics="conoscope"), 400),
     (view(mineral="\x1b[31mred"), 400), ("/api/view?plate=mica&plate=gypsum", 400), (view(zoom=3), 400),
@@ -59,14 +71,32 @@ MIXED_LOAD = [
 ]
 
 
-def test_many_clients_at_once_get_their_answers(port):
+def run_clients(port, clients, requests_each):
+    """`clients` threads, each sending `requests_each` requests of MIXED_LOAD in turn (each from its own
+    place in the list); returns the (status, expected) pairs and the seconds taken."""
+    def client(first):
+        return [(request(port, MIXED_LOAD[(first + k) % len(MIXED_LOAD)][0])[0], MIXED_LOAD[(first + k) % len(MIXED_LOAD)][1])
+                for k in range(requests_each)]
     started = time.monotonic()
-    with concurrent.futures.ThreadPoolExecutor(max_workers=16) as pool:
-        futures = {pool.submit(request, port, path): expected for path, expected in MIXED_LOAD * 6}
-        statuses = [(future.result()[0], expected) for future, expected in futures.items()]
-    elapsed = time.monotonic() - started
-    assert all(status == expected for status, expected in statuses), [s for s in statuses if s[0] != s[1]]
-    print(f"server load: {len(statuses)} requests from 16 clients in {elapsed:.2f} s")
+    with concurrent.futures.ThreadPoolExecutor(max_workers=clients) as pool:
+        results = [pair for answers in pool.map(client, range(clients)) for pair in answers]
+    return results, time.monotonic() - started
+
+
+def test_twenty_clients_times_two_hundred_requests(server):
+    """Every answer as expected, the server up, and its memory back at the level a first round left: what
+    a round allocates is given back (the allocator keeps freed blocks for the next views, so the level to
+    return to is the one after a round, not the one before the first request)."""
+    process, port = server
+    warm, _ = run_clients(port, 20, 20)
+    idle_kib = resident_kib(process)
+    results, seconds = run_clients(port, 20, 200)
+    after_kib = resident_kib(process)
+    wrong = [pair for pair in warm + results if pair[0] != pair[1]]
+    assert not wrong, wrong[:10]
+    print(f"server load: {len(results)} requests from 20 clients in {seconds:.1f} s; resident {idle_kib} kB after a first round, "
+          f"{after_kib} kB after the load")
+    assert after_kib <= idle_kib + 32 * 1024  # one 512² view's reply and harmonics; a leak of 4000 requests would be far more
     assert request(port, "/api/catalog")[0] == 200
 
 
@@ -142,3 +172,45 @@ def test_oversized_bodies_and_queries_are_refused(port):
     status, _ = request(port, "/api/view?mineral=" + "q" * 20000)
     assert status in (400, 414)
     assert request(port, "/api/catalog")[0] == 200
+
+
+def raw_exchange(port, data):
+    """Sends raw bytes as a request; the status of the answer, or 0 when the server closed the connection."""
+    with socket.create_connection(("127.0.0.1", port), timeout=30) as connection:
+        connection.sendall(data)
+        connection.shutdown(socket.SHUT_WR)
+        answer = b""
+        while chunk := connection.recv(65536):
+            answer += chunk
+    match = re.match(rb"HTTP/1\.[01] (\d{3})", answer)
+    return int(match.group(1)) if match else 0
+
+
+def malformed_request(rng, port):
+    """One request as a careless or hostile client sends it: mangled request lines, percent-encodings,
+    control bytes, odd methods and headers, parameters with random names and values."""
+    names = ["optics", "section", "x", "y", "mineral", "cut", "euler", "thickness_um", "plate", "size_px", "na", "seed", "analyzer",
+             "polarizer", "wavelength_nm", "", "%00", "a" * 300]
+    values = ["granite", "random", "1e308", "-0", "nan", "inf", "%ff%fe", "%00", "0x10", "1,2", "1,2,3,4", "calcite\r\nX: y", "\x7f",
+              "64", "1025", "-1", "9" * 40, "optic-axis", "out", ""]
+    query = "&".join(f"{rng.choice(names)}={rng.choice(values)}" for _ in range(rng.randrange(0, 6)))
+    path = rng.choice(["/api/view", "/api/grain", "/api/catalog", "/", "/%2e%2e/%2e%2e/etc/passwd", "/api/section", "//api//view", "/\x01"])
+    method = rng.choice(["GET", "GET", "GET", "POST", "PUT", "DELETE", "HEAD", "OPTIONS", "G\x00T"])
+    line = f"{method} {path}?{query} HTTP/1.1\r\n".encode("latin-1", "replace")
+    headers = f"Host: 127.0.0.1:{port}\r\n".encode()
+    extra = rng.choice([b"", b"Content-Length: -5\r\n", b"Content-Length: 99999999999\r\n", b"Transfer-Encoding: chunked\r\n",
+                        b"X-Long: " + b"h" * 10000 + b"\r\n", bytes(rng.randrange(256) for _ in range(40)) + b"\r\n"])
+    return rng.choice([line + headers + extra + b"\r\n", bytes(rng.randrange(256) for _ in range(rng.randrange(1, 200))),
+                       line[: rng.randrange(1, len(line))]])
+
+
+def test_malformed_requests_never_crash_the_server(server):
+    """A fuzz run in the tests: 300 random malformed requests (seeded, so a failure can be replayed), each
+    answered with a client error or closed, none with a server error; the server is still up after."""
+    process, port = server
+    rng = random.Random(21)
+    statuses = [raw_exchange(port, malformed_request(rng, port)) for _ in range(300)]
+    assert all(status < 500 for status in statuses), sorted(set(statuses))
+    assert process.poll() is None
+    assert request(port, "/api/catalog")[0] == 200
+    print("malformed requests:", {status: statuses.count(status) for status in sorted(set(statuses))})

@@ -38,7 +38,7 @@ PickedGrain picked_grain(const QueryParameters& query, const SectionLookup& sect
 ThinSection single_crystal_section(const QueryParameters& query, const MineralCatalog& catalog);
 
 /// The view in orthoscopy: a section (`section`, `seed`, optional `thickness_um`) or, without `section`, a
-/// single crystal; `condenser_na`; light, polars and plate as in `light_and_polars`.
+/// single crystal; `condenser_na`; the light (`wavelength_nm`, `illuminant`), `analyzer`, `plate`, `wedge_position`.
 OrthoscopeRequest orthoscope_view_request(const QueryParameters& query, const MineralCatalog& catalog, const SectionLookup& sections);
 
 /// The view through the Bertrand lens: the grain picked in a section (`section`, `x`, `y`) or a single
