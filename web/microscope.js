@@ -11,7 +11,7 @@ const CACHE_LIMIT = 12;               // views kept (a 512² view is 15.7 MB)
 const PREVIEW_FIGURE_PX = 128;        // a conoscopic figure's first, quick picture
 
 const state = { stageDeg: 0, pick: null, view: null, viewKey: "", dirty: true, numbers: null };
-const stats = { frames: 0, composeMs: [], fetches: 0, viewMs: [] };
+const stats = { frames: 0, composeMs: [], views: [] };  // views: each shown, its time and whether it was held
 window.petroscope = { state, stats, ready: false, prefetching: false, errors: [] };
 
 // ---- the view's query ------------------------------------------------------------------------------
@@ -76,26 +76,29 @@ function decodeHarmonics(buffer) {
 }
 
 async function fetchView(query) {
-  stats.fetches++;
   const response = await fetch("api/view?" + query);
   if (!response.ok) throw new Error((await response.json()).error);
   return decodeHarmonics(await response.arrayBuffer());
 }
 
+/// The view for `query`, fetched once; the least recently used views make room for new ones.
 function view(query) {
-  if (!cache.has(query)) {
-    const promise = fetchView(query);
+  let promise = cache.get(query);
+  if (promise === undefined) {
+    promise = fetchView(query);
     promise.catch(() => cache.delete(query));
-    cache.set(query, promise);
-    while (cache.size > CACHE_LIMIT) cache.delete(cache.keys().next().value);
   }
-  return cache.get(query);
+  cache.delete(query);
+  cache.set(query, promise);  // the Map's order is the order of use
+  while (cache.size > CACHE_LIMIT) cache.delete(cache.keys().next().value);
+  return promise;
 }
 
 /// Shows the current view: from the cache at once, else (a figure) a quick small one first, then the full one.
 async function refresh() {
   const started = performance.now();
   const query = viewQuery();
+  const cached = cache.has(query);
   state.viewKey = query;
   window.petroscope.ready = false;
   foregroundPending++;
@@ -108,7 +111,7 @@ async function refresh() {
     const full = await view(query);
     if (state.viewKey !== query) return;
     show(full);
-    stats.viewMs.push(performance.now() - started);
+    stats.views.push({ ms: performance.now() - started, cached });
     setStatus("ready");
     window.petroscope.ready = true;
   } catch (error) {
@@ -124,17 +127,18 @@ function show(decoded) {
   state.dirty = true;
 }
 
-/// While nothing else is asked, the views one click away: the analyzer toggled, the other plates.
+/// While nothing else is asked, the views one click away from the current one: the analyzer toggled, the
+/// other plates. The current view is looked at again after every fetch, so a change meanwhile is followed.
 let prefetching = false;
 async function prefetchVariants() {
   if (prefetching) return;
   prefetching = window.petroscope.prefetching = true;
-  const variants = [{ analyzer: !$("analyzer").checked }, { plate: "gypsum" }, { plate: "mica" }, { plate: "none" }];
-  for (const variant of variants) {
-    if (foregroundPending > 0) break;
-    const query = viewQuery(variant);
-    if (cache.has(query)) continue;
-    try { await view(query); } catch (error) { break; }
+  for (;;) {
+    if (foregroundPending > 0) break;  // the view being fetched calls this again once shown
+    const variants = [{ analyzer: !$("analyzer").checked }, { plate: "gypsum" }, { plate: "mica" }, { plate: "none" }];
+    const missing = variants.map((variant) => viewQuery(variant)).find((query) => !cache.has(query));
+    if (missing === undefined) break;
+    try { await view(missing); } catch (error) { break; }
   }
   prefetching = window.petroscope.prefetching = false;
 }
