@@ -46,11 +46,12 @@ Image harmonic_coefficients(const std::function<DisplayImage(int, const Progress
             if (illuminant != nullptr) *illuminant = picture.illuminant;
         }
         const std::array<double, kStageHarmonicCount> basis = harmonic_basis(kSampleStepDeg * k);
+        std::array<float, kStageHarmonicCount> weights{};
+        for (int j = 0; j < kStageHarmonicCount; ++j) weights[j] = static_cast<float>((j == 0 ? 1.0 : 2.0) / kStageHarmonicCount * basis[j]);
         const std::size_t pixels = static_cast<std::size_t>(rgb.width) * static_cast<std::size_t>(rgb.height);
         for (std::size_t p = 0; p < pixels; ++p) {
             for (int j = 0; j < kStageHarmonicCount; ++j) {
-                const auto weight = static_cast<float>((j == 0 ? 1.0 : 2.0) / kStageHarmonicCount * basis[j]);
-                for (int c = 0; c < 3; ++c) coefficients.pixels[p * kStageHarmonicChannels + 3 * j + c] += weight * rgb.pixels[p * 3 + c];
+                for (int c = 0; c < 3; ++c) coefficients.pixels[p * kStageHarmonicChannels + 3 * j + c] += weights[j] * rgb.pixels[p * 3 + c];
             }
         }
     }
@@ -111,10 +112,9 @@ StageHarmonics polarized_orthoscope_harmonics(const OrthoscopeRequest& request, 
 
     OrthoscopeRequest outside_request = request;
     outside_request.thickness_um.reset();
+    outside_request.section = cement_only_section(middle_thickness_um);
     const auto render_outside = [&](int k, const ProgressCallback&) {
-        OrthoscopeRequest turned = with_tube_turned(outside_request, -kSampleStepDeg * k);
-        turned.section = cement_only_section(middle_thickness_um);
-        return render_orthoscope_image(plan_orthoscope(std::move(turned), catalog)).image;
+        return render_orthoscope_image(plan_orthoscope(with_tube_turned(outside_request, -kSampleStepDeg * k), catalog)).image;
     };
     const Image outside = harmonic_coefficients(render_outside, {}, nullptr);
     std::copy(outside.pixels.begin(), outside.pixels.end(), harmonics.outside.begin());

@@ -205,13 +205,14 @@ std::shared_ptr<const ThinSection> LiveMicroscope::section(const QueryParameters
         throw InputError(parameter_message("section", "no section " + quote_input(*sent) + " was sent to this server (or it was dropped to make room)"));
     }
     const std::string name = query.choice("section", section_names_);
-    const std::string key = name == "random" ? "random " + std::to_string(query.integer("seed", 0, 2147483647, 1)) : name;
+    const bool random = name == "random";
+    const std::uint64_t seed = random ? static_cast<std::uint64_t>(query.integer("seed", 0, 2147483647, 1)) : 0;
+    const std::string key = random ? "random " + std::to_string(seed) : name;
     const std::lock_guard<std::mutex> lock(sections_mutex_);
     if (const auto found = sections_.find(key); found != sections_.end()) return found->second;
     if (sections_.size() >= section_names_.size() + kRandomSectionsKept) sections_.clear();
-    std::shared_ptr<const ThinSection> loaded =
-        name == "random" ? std::make_shared<const ThinSection>(random_section(static_cast<std::uint64_t>(query.integer("seed", 0, 2147483647, 1))))
-                         : std::make_shared<const ThinSection>(read_thin_section(sections_dir_ / name, catalog_));
+    std::shared_ptr<const ThinSection> loaded = random ? std::make_shared<const ThinSection>(random_section(seed))
+                                                       : std::make_shared<const ThinSection>(read_thin_section(sections_dir_ / name, catalog_));
     sections_[key] = loaded;
     return loaded;
 }

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <numbers>
 
 namespace petroscope {
@@ -35,19 +36,26 @@ OrthoscopeRequest section_request(std::optional<PlateRequest> plate, bool analyz
     return request;
 }
 
+/// At each of `stages_deg`, the composed picture against `render` of the request turned to that stage.
+template <typename Request, typename Render>
+void expect_composed_is_rendered(const StageHarmonics& harmonics, const Request& request, std::initializer_list<double> stages_deg,
+                                 const Render& render) {
+    for (const double stage_deg : stages_deg) {
+        Request turned = request;
+        turned.stage_deg = stage_deg;
+        EXPECT_LT(largest_difference(compose_at_stage(harmonics, stage_deg), render(turned)), 2e-6) << "stage " << stage_deg;
+    }
+}
+
 // Composed at a stage angle none of the five renders used, with the corners of the turned section showing
 // glass: the same picture as the render at that stage, for every arrangement of polars and plates.
 TEST(StageHarmonics, OrthoscopeComposedAtAnyStageIsTheRenderAtThatStage) {
     const std::vector<OrthoscopeRequest> requests{section_request(std::nullopt, true), section_request(PlateRequest{PlateKind::gypsum}, true),
                                                   section_request(PlateRequest{PlateKind::mica, 30.0}, true), section_request(std::nullopt, false)};
     for (const OrthoscopeRequest& request : requests) {
-        const StageHarmonics harmonics = orthoscope_stage_harmonics(request, minerals());
-        for (const double stage_deg : {17.0, 90.0, 233.5}) {
-            OrthoscopeRequest turned = request;
-            turned.stage_deg = stage_deg;
-            const Image direct = render_orthoscope_image(plan_orthoscope(turned, minerals())).image.linear_rgb;
-            EXPECT_LT(largest_difference(compose_at_stage(harmonics, stage_deg), direct), 2e-6) << "stage " << stage_deg;
-        }
+        expect_composed_is_rendered(orthoscope_stage_harmonics(request, minerals()), request, {17.0, 90.0, 233.5}, [](const OrthoscopeRequest& turned) {
+            return render_orthoscope_image(plan_orthoscope(turned, minerals())).image.linear_rgb;
+        });
     }
 }
 
@@ -76,13 +84,9 @@ TEST(StageHarmonics, ConoscopeComposedAtQuarterTurnsIsTheRenderThere) {
     request.orientation.azimuth_deg = 20.0;
     request.size_px = 64;
     request.plate = PlateRequest{PlateKind::gypsum};
-    const StageHarmonics harmonics = conoscope_stage_harmonics(request, minerals());
-    for (const double stage_deg : {90.0, 180.0, 270.0}) {
-        ConoscopeRequest turned = request;
-        turned.stage_deg = stage_deg;
-        const Image direct = render_conoscope_figure(plan_conoscope(turned, minerals())).image.linear_rgb;
-        EXPECT_LT(largest_difference(compose_at_stage(harmonics, stage_deg), direct), 2e-6) << "stage " << stage_deg;
-    }
+    expect_composed_is_rendered(conoscope_stage_harmonics(request, minerals()), request, {90.0, 180.0, 270.0}, [](const ConoscopeRequest& turned) {
+        return render_conoscope_figure(plan_conoscope(turned, minerals())).image.linear_rgb;
+    });
 }
 
 // Unpolarized light and no analyzer: the eye sees ½·tr(J J†), which turning the crystal does not change

@@ -10,8 +10,6 @@ import base64
 import json
 import math
 import os
-import re
-import signal
 import subprocess
 import time
 
@@ -19,6 +17,7 @@ import numpy
 import pytest
 
 from devtools import Browser, find_chromium
+from served import running_server
 
 BINARY = os.environ.get("PETROSCOPE_BINARY")
 SCREENSHOTS = os.environ.get("PETROSCOPE_SCREENSHOT_DIR")  # set to write the pictures of docs/browser.md
@@ -29,14 +28,8 @@ pytestmark = pytest.mark.skipif(not BINARY or not find_chromium(), reason="needs
 
 @pytest.fixture(scope="module")
 def server():
-    process = subprocess.Popen([BINARY, "serve", "--port", "0"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    line = process.stdout.readline()
-    match = re.search(r"(http://127\.0\.0\.1:\d+/)", line)
-    assert match, "no address printed: " + line + process.stderr.read()
-    yield match.group(1)
-    process.send_signal(signal.SIGINT)
-    assert process.wait(timeout=20) == 0, process.stderr.read()
-    assert "stopped" in process.stdout.read()
+    with running_server(BINARY) as (_, port):
+        yield f"http://127.0.0.1:{port}/"
 
 
 @pytest.fixture(scope="module")

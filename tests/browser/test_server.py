@@ -9,13 +9,13 @@ import json
 import os
 import random
 import re
-import signal
 import socket
-import subprocess
 import time
 import urllib.parse
 
 import pytest
+
+from served import running_server
 
 BINARY = os.environ.get("PETROSCOPE_BINARY")
 pytestmark = pytest.mark.skipif(not BINARY, reason="needs the petroscope binary")
@@ -23,13 +23,8 @@ pytestmark = pytest.mark.skipif(not BINARY, reason="needs the petroscope binary"
 
 @pytest.fixture(scope="module")
 def server():
-    process = subprocess.Popen([BINARY, "serve", "--port", "0"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    line = process.stdout.readline()
-    match = re.search(r"http://127\.0\.0\.1:(\d+)/", line)
-    assert match, "no address printed: " + line + process.stderr.read()
-    yield process, int(match.group(1))
-    process.send_signal(signal.SIGINT)
-    assert process.wait(timeout=20) == 0, process.stderr.read()
+    with running_server(BINARY) as served:
+        yield served
 
 
 @pytest.fixture(scope="module")

@@ -91,6 +91,13 @@ TEST_F(Cli, MineralsShowJson) {
     EXPECT_EQ(nlohmann::json::parse(at_500.out)["wavelength_nm"].get<double>(), 500.0);
 }
 
+// `petroscope serve` with an address it cannot listen on, or a port out of range: exit 2 with a message,
+// instead of serving (203.0.113.7 is a documentation address, RFC 5737, never this machine's).
+TEST_F(Cli, ServeRejectsAnAddressOrPortItCannotUse) {
+    expect_rejected("serve --port 70000", {"--port"});
+    expect_rejected("serve --host 203.0.113.7 --port 0", {"cannot listen on '203.0.113.7'"});
+}
+
 TEST_F(Cli, MineralsShowUnknownNameSuggests) {
     const CommandResult run = petroscope("minerals show quarz");
     EXPECT_NE(run.exit_code, 0);
