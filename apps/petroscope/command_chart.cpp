@@ -1,5 +1,6 @@
 // petroscope chart: the Michel-Lévy chart of interference colours, computed by the orthoscope's pipeline.
 #include "cli_common.hpp"
+#include "heavy_commands.hpp"
 
 #include "petroscope/api/michel_levy_chart.hpp"
 #include "petroscope/core/error.hpp"
@@ -95,10 +96,7 @@ void run_chart(const ChartOptions& options, const std::string& minerals_dir, con
 
 void add_chart_command(CLI::App& app, const std::string& minerals_dir, const std::string& command_line) {
     auto options = std::make_shared<ChartOptions>();
-    CLI::App* command = app.add_subcommand(
-        "chart",
-        "Draw the Michel-Levy chart of interference colours (retardation x thickness, birefringence lines),\n"
-        "computed with the orthoscope's own physics; --csv gives the numbers per retardation step.");
+    CLI::App* command = app.add_subcommand(std::string(kChartCommand.name), std::string(kChartCommand.description));
     command->add_option("--mineral", options->mineral, "Use this mineral's real dispersion of birefringence (default: none, classic chart)");
     command->add_option("--max-retardation", options->max_retardation_nm, "Largest retardation in nm")->capture_default_str();
     command->add_option("--step", options->step_nm, "Retardation step in nm")->capture_default_str();

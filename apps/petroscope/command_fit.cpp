@@ -1,6 +1,7 @@
 // petroscope fit conoscope: the slab thickness (and the unknowns of a real photo) fitted to a photograph of
 // an interference figure. The method: docs/fitting.md.
 #include "cli_common.hpp"
+#include "heavy_commands.hpp"
 #include "cli_light.hpp"
 #include "fit_report.hpp"
 #include "frame_command.hpp"
@@ -227,7 +228,7 @@ void run_fit_conoscope(const FitOptions& options, const std::string& minerals_di
 }  // namespace
 
 void add_fit_command(CLI::App& app, const std::string& minerals_dir) {
-    CLI::App* fit = app.add_subcommand("fit", "Fit a model to microscope photographs (docs/fitting.md)");
+    CLI::App* fit = app.add_subcommand(std::string(kFitCommand.name), std::string(kFitCommand.description));
     fit->require_subcommand(1);
     auto options = std::make_shared<FitOptions>();
     CLI::App* conoscope = fit->add_subcommand(

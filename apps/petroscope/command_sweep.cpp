@@ -2,6 +2,7 @@
 // options, as numbered frames with their sidecars, a labelled contact sheet, an animation and a CSV of
 // measurements (docs/sweep.md).
 #include "cli_common.hpp"
+#include "heavy_commands.hpp"
 #include "frame_command.hpp"
 
 #include "petroscope/api/sweep.hpp"
@@ -234,12 +235,7 @@ void run_sweep(const SweepOptions& sweep, const RenderOptionSet& options, const 
 }  // namespace
 
 void add_sweep_command(CLI::App& app, const std::string& minerals_dir) {
-    CLI::App* sweep = app.add_subcommand(
-        "sweep",
-        "Render conoscope, orthoscope or conical over a range of one or two of its numeric options (a grid): numbered\n"
-        "frames with JSON sidecars, a labelled contact sheet, an animation (GIF or MP4) and measurements.csv, in the\n"
-        "folder -o DIR. Frames already there are skipped (an interrupted sweep resumes); --shard K/N renders a part,\n"
-        "'petroscope sweep --merge DIR' joins the parts. Layout and columns: docs/sweep.md.");
+    CLI::App* sweep = app.add_subcommand(std::string(kSweepCommand.name), std::string(kSweepCommand.description));
     const auto merge_folder = std::make_shared<std::string>();
     sweep->add_option("--merge", *merge_folder, "Build measurements.csv, the contact sheet and the animation of a sweep folder whose shards are all done");
     for (const auto& [name, make] : frame_commands()) {

@@ -1,9 +1,12 @@
-// petroscope: a physically exact simulator of the polarizing microscope. This file only wires the
-// subcommands together; each lives in its own command_*.cpp.
+// petroscope and petroscope-full: a physically exact simulator of the polarizing microscope. This file only
+// wires the subcommands together; each lives in its own command_*.cpp, and heavy_commands.hpp tells which
+// of them petroscope hands to petroscope-full.
 #include "cli_common.hpp"
 #include "frame_command.hpp"
+#include "heavy_commands.hpp"
 
 #include "petroscope/core/error.hpp"
+#include "petroscope/core/heap.hpp"
 #include "petroscope/io/atomic_file.hpp"
 
 #include <CLI/CLI.hpp>
@@ -13,6 +16,7 @@
 
 int main(int argc, char** argv) {
     petroscope::install_interrupt_cleanup();
+    petroscope::keep_large_blocks_in_heap();
     CLI::App app{
         "petroscope: a physically exact simulator of the petrographic (polarizing) microscope.\n"
         "Interference figures are computed per wavelength from the exact eigenmodes of the crystal.\n\n"
@@ -42,11 +46,8 @@ int main(int argc, char** argv) {
     petroscope::cli::add_frame_command(app, petroscope::cli::make_conical_options(), minerals_dir, command_line);
     petroscope::cli::add_section_command(app, minerals_dir);
     petroscope::cli::add_frame_command(app, petroscope::cli::make_orthoscope_options(), minerals_dir, command_line);
-    petroscope::cli::add_chart_command(app, minerals_dir, command_line);
-    petroscope::cli::add_sweep_command(app, minerals_dir);
-    petroscope::cli::add_fit_command(app, minerals_dir);
     petroscope::cli::add_frame_command(app, petroscope::cli::make_render_options(), minerals_dir, command_line);
-    petroscope::cli::add_serve_command(app, minerals_dir);
+    petroscope::cli::add_heavy_commands(app, minerals_dir, command_line, argc, argv);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -1,4 +1,4 @@
-// The extension module that uses the image libraries (OpenImageIO, OpenCV): reading thin sections and
+// The extension module that uses the image libraries (libpng, libtiff, OpenEXR, libjpeg; OpenCV): reading thin sections and
 // images, drawing the Michel-Lévy chart. It is kept apart from _petroscope so that `import petroscope` does
 // not load them; the package imports it on first use.
 #include "chart_arguments.hpp"

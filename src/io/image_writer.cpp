@@ -1,14 +1,15 @@
 #include "petroscope/io/image_writer.hpp"
 
+#include "image_files.hpp"
 #include "petroscope/core/error.hpp"
 #include "petroscope/core/text.hpp"
 #include "petroscope/spectral/color.hpp"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace petroscope {
@@ -75,47 +76,40 @@ std::uint8_t srgb_code(float linear) {
 
 void write_image(const Image& linear_rgb, const std::filesystem::path& path, ImageFormat format) {
     if (linear_rgb.channels != 3) throw InputError("internal: write_image expects 3 channels");
-    auto output = OIIO::ImageOutput::create(image_format_name(format));
-    if (!output) throw InputError("cannot write " + path.string() + ": no " + image_format_name(format) + " writer (" + OIIO::geterror() + ")");
-    const bool display = format == ImageFormat::png;
-    OIIO::ImageSpec spec(linear_rgb.width, linear_rgb.height, 3, display ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
-    spec.attribute("Software", "petroscope");
-    if (display) {
-        spec.attribute("oiio:ColorSpace", "sRGB");
-    } else {
-        spec.attribute("oiio:ColorSpace", "linear");
-        if (format == ImageFormat::tiff) spec.attribute("compression", "zip");
-    }
-    bool ok = output->open(path.string(), spec);
-    if (ok && display) {
+    if (format == ImageFormat::png) {
         std::vector<std::uint8_t> encoded(linear_rgb.pixels.size());
         std::transform(linear_rgb.pixels.begin(), linear_rgb.pixels.end(), encoded.begin(), srgb_code);
-        ok = output->write_image(OIIO::TypeDesc::UINT8, encoded.data());
-    } else if (ok) {
-        ok = output->write_image(OIIO::TypeDesc::FLOAT, linear_rgb.pixels.data());
+        // Every write and the close are checked (image_file_png.cpp): a short file is reported there.
+        write_png(path, linear_rgb.width, linear_rgb.height, 3, 8, encoded.data(), true);
+        return;
     }
-    ok = output->close() && ok;
-    if (!ok) throw InputError("cannot write " + path.string() + ": " + output->geterror());
-    // The PNG writer does not report every failed write (a full disk, a file size limit): read the file
-    // back whole, which fails on a truncated file.
-    const auto check = OIIO::ImageInput::open(path.string());
-    std::vector<float> back(linear_rgb.pixels.size());
-    if (!check || check->spec().width != linear_rgb.width || check->spec().height != linear_rgb.height ||
-        !check->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, back.data())) {
-        const std::string reason = check ? check->geterror() : OIIO::geterror();
+    if (format == ImageFormat::exr) {
+        write_exr_float32(path, linear_rgb.width, linear_rgb.height, 3, linear_rgb.pixels.data());
+    } else {
+        write_tiff_float32(path, linear_rgb.width, linear_rgb.height, 3, linear_rgb.pixels.data());
+    }
+    // Not every failed write is reported (OpenEXR writes its offset table from a destructor, which cannot
+    // throw; libtiff's close returns nothing): read the file back whole, which fails on a truncated file.
+    DecodedImage back;
+    std::string reason;
+    try {
+        back = read_image_file(path);
+    } catch (const InputError& error) {
+        reason = error.what();
+    }
+    if (!reason.empty() || back.width != linear_rgb.width || back.height != linear_rgb.height || back.channels != 3) {
         throw InputError("cannot write " + path.string() + ": the file did not come out whole (is the disk full, or a file size limit set?)" +
                          (reason.empty() ? std::string() : " (" + reason + ")"));
     }
 }
 
 Image read_image(const std::filesystem::path& path) {
-    auto input = OIIO::ImageInput::open(path.string());
-    if (!input) throw InputError("cannot read image " + path.string() + ": " + OIIO::geterror());
-    const OIIO::ImageSpec& spec = input->spec();
-    Image image(spec.width, spec.height, spec.nchannels);
-    const bool ok = input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data());
-    input->close();
-    if (!ok) throw InputError("cannot read image " + path.string() + ": " + input->geterror());
+    DecodedImage decoded = read_image_file(path);
+    Image image;
+    image.width = decoded.width;
+    image.height = decoded.height;
+    image.channels = decoded.channels;
+    image.pixels = std::move(decoded.values);
     return image;
 }
 

@@ -1,13 +1,12 @@
 #include "petroscope/serve/http_server.hpp"
 
 #include "petroscope/core/error.hpp"
+#include "petroscope/core/heap.hpp"
 #include "petroscope/core/text.hpp"
 
 #include <httplib.h>
 #include <nlohmann/json.hpp>
 #include <pthread.h>
-
-#include <malloc.h>
 
 #include <algorithm>
 #include <csignal>
@@ -58,21 +57,11 @@ void answer(const ServeSettings& settings, int port, const httplib::Request& req
     if (settings.verbose) std::fprintf(stderr, "%d %s\n", reply.status, quote_input(request.target, 200).c_str());
 }
 
-/// A view allocates tens of MB; glibc's default returns such blocks to the system at once (mmap), so every
-/// view paid again for first touches of fresh pages (about a third of a 512² view's time on a 2-core VM).
-/// Kept in the heap instead: blocks up to 32 MB (glibc's largest threshold), and no trimming below 1 GB.
-void keep_large_blocks() {
-#ifdef __GLIBC__
-    mallopt(M_MMAP_THRESHOLD, 32 << 20);
-    mallopt(M_TRIM_THRESHOLD, 1 << 30);
-#endif
-}
-
 }  // namespace
 
 void serve_until_interrupted(const LiveMicroscope& microscope, const ServeSettings& settings,
                              const std::function<void(const std::string& url)>& on_listening) {
-    keep_large_blocks();
+    keep_large_blocks_in_heap();  // a view allocates tens of MB
     httplib::Server server;
     server.set_payload_max_length(settings.max_body_bytes);
     int port = settings.port;
