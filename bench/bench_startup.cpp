@@ -35,6 +35,10 @@ bool run_quietly(std::vector<std::string> arguments) {
     return spawned == 0 && waitpid(child, &status, 0) == child && WIFEXITED(status) && WEXITSTATUS(status) == 0;
 }
 
+const std::string kPetroscope = PETROSCOPE_BINARY;
+const std::string kPetroscopeFull = PETROSCOPE_FULL_BINARY;
+const std::string kFigure = (std::filesystem::temp_directory_path() / "petroscope-bench-startup.png").string();
+
 void Run(benchmark::State& state, const std::vector<std::string>& arguments) {
     for (auto _ : state) {
         if (!run_quietly(arguments)) {
@@ -42,11 +46,9 @@ void Run(benchmark::State& state, const std::vector<std::string>& arguments) {
             break;
         }
     }
+    std::filesystem::remove(kFigure);
+    std::filesystem::remove(kFigure + ".json");
 }
-
-const std::string kPetroscope = PETROSCOPE_BINARY;
-const std::string kPetroscopeFull = PETROSCOPE_FULL_BINARY;
-const std::string kFigure = (std::filesystem::temp_directory_path() / "petroscope-bench-startup.png").string();
 
 BENCHMARK_CAPTURE(Run, help, std::vector<std::string>{kPetroscope, "--help"})->Name("StartUp/help")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(Run, minerals, std::vector<std::string>{kPetroscope, "minerals"})->Name("StartUp/minerals")->Unit(benchmark::kMillisecond)->UseRealTime();

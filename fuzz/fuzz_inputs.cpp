@@ -4,6 +4,7 @@
 #include "petroscope/core/text.hpp"
 #include "petroscope/core/units.hpp"
 #include "petroscope/io/data_files.hpp"
+#include "petroscope/io/image_writer.hpp"
 #include "petroscope/io/interface_case.hpp"
 #include "petroscope/io/jpeg_encoding.hpp"
 #include "petroscope/io/json_reader.hpp"
@@ -101,6 +102,8 @@ void dispatch(const std::string& name, std::string_view input) {
         values(input);
     } else if (name == "serve_query") {
         serve_query(input);
+    } else if (name == "image_file") {
+        read_image(write_input("image", input));  // PNG, TIFF, OpenEXR or JPEG, by the file's signature
     } else if (name == "jpeg_header") {
         (void)jpeg_encoding_of({reinterpret_cast<const std::uint8_t*>(input.data()), input.size()}, "fuzz.jpg");
     } else {
@@ -111,7 +114,7 @@ void dispatch(const std::string& name, std::string_view input) {
 }  // namespace
 
 const std::vector<std::string>& target_names() {
-    static const std::vector<std::string> names{"mineral", "thin_section", "interface_case", "scene", "values", "jpeg_header", "serve_query"};
+    static const std::vector<std::string> names{"mineral", "thin_section", "interface_case", "scene", "values", "jpeg_header", "serve_query", "image_file"};
     return names;
 }
 

@@ -9,7 +9,7 @@
 
 namespace petroscope::fuzz {
 
-/// The targets by name: "mineral", "thin_section", "interface_case", "scene", "values", "jpeg_header", "serve_query".
+/// The targets by name: "mineral", "thin_section", "interface_case", "scene", "values", "jpeg_header", "serve_query", "image_file".
 const std::vector<std::string>& target_names();
 /// Runs target `name` on `input`.
 void run_target(const std::string& name, std::string_view input);

@@ -12,7 +12,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 build=$root/build-fuzz
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ -DPETROSCOPE_FUZZ=ON \
       -DPETROSCOPE_BUILD_TESTS=OFF -DPETROSCOPE_BUILD_BENCHMARKS=OFF > /dev/null
-targets=(mineral thin_section interface_case scene values jpeg_header serve_query)
+targets=(mineral thin_section interface_case scene values jpeg_header serve_query image_file)
 cmake --build "$build" -j"$(nproc)" --target "${targets[@]/#/fuzz_}"
 
 seed() {  # seed TARGET: the corpus folder, filled with the repository's files of that kind
@@ -28,6 +28,7 @@ seed() {  # seed TARGET: the corpus folder, filled with the repository's files o
                 printf '\x02thickness=10um:60um:10um' > "$corpus"/sweep; printf '\x032/8' > "$corpus"/shard; printf '\x041.5e-3' > "$corpus"/number ;;
         jpeg_header) cp "$root"/fuzz/regressions/jpeg_header/*.jpg "$corpus"/ ;;
         serve_query) cp "$root"/fuzz/regressions/serve_query/* "$corpus"/ ;;
+        image_file) cp "$root"/fuzz/regressions/image_file/* "$root"/fuzz/regressions/jpeg_header/*.jpg "$corpus"/ ;;
     esac
     echo "$corpus"
 }

@@ -17,7 +17,13 @@ namespace {
 [[noreturn]] void run_full_program(std::string_view command, int argc, char** argv) {
     std::error_code error;
     const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", error);
-    const std::filesystem::path full = (error ? std::filesystem::path(argv[0]) : self).parent_path() / kFullProgramName;
+    // Without /proc, argv[0] tells the folder only when it holds one (not when petroscope was found on the PATH).
+    const std::string started_as = argv[0];
+    if (error && started_as.find('/') == std::string::npos) {
+        throw InputError("the command '" + std::string(command) + "' is run by " + std::string(kFullProgramName) +
+                         ", but petroscope cannot tell its own folder (no /proc/self/exe); run petroscope-full directly");
+    }
+    const std::filesystem::path full = (error ? std::filesystem::path(started_as) : self).parent_path() / kFullProgramName;
     std::vector<char*> arguments(argv, argv + argc);
     arguments.push_back(nullptr);
     ::execv(full.c_str(), arguments.data());

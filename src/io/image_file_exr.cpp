@@ -28,17 +28,19 @@ namespace {
 // ---- OpenEXR (the OpenEXR file layout; channel naming after "Technical Introduction to OpenEXR"), through
 // its C++ library, whose errors are exceptions.
 
-// The channels read, in order: R, G, B with an optional A, or luminance Y with an optional A.
+// The channels read, in order: R, G, B with an optional A, luminance Y with an optional A, or the one
+// channel of a single-channel file whatever its name (a thickness map's "Z" or "thickness").
 std::vector<std::string> exr_channel_order(const ReadSource& source, const Imf::ChannelList& list) {
     std::vector<std::string> names;
     for (auto channel = list.begin(); channel != list.end(); ++channel) names.emplace_back(channel.name());
+    if (names.size() == 1) return names;
     const std::array<std::vector<std::string>, 4> orders{{{"Y"}, {"Y", "A"}, {"R", "G", "B"}, {"R", "G", "B", "A"}}};
     for (const auto& order : orders) {
         if (std::is_permutation(order.begin(), order.end(), names.begin(), names.end())) return order;
     }
     std::string listed;
     for (const std::string& name : names) listed += (listed.empty() ? "" : ", ") + name;
-    source.fail("its channels are " + quote_input(listed, 200) + "; expected R, G, B (and A) or Y (and A)");
+    source.fail("its channels are " + quote_input(listed, 200) + "; expected R, G, B (and A), Y (and A) or a single channel");
 }
 
 // The stored type of an OpenEXR channel (UINT, HALF or FLOAT).

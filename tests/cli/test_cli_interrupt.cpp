@@ -38,8 +38,7 @@ TEST_F(Interrupt, AWriteThatRunsOutOfSpaceIsAnErrorAndLeavesNothing) {
     // 4 KiB of file size allowed: the 256² PNG needs more.
     const testing::CommandResult run = shell("ulimit -f 4; \"$P\" conoscope --size 256 -o figure.png");
     EXPECT_EQ(run.exit_code, 2) << run.err;
-    // The PNG writer sees the failed write itself (EFBIG; a failure it did not see would be caught by reading
-    // the file back: "did not come out whole").
+    // The PNG writer checks every write and sees the failure itself (EFBIG).
     EXPECT_NE(run.err.find("cannot write"), std::string::npos) << run.err;
     EXPECT_NE(run.err.find("File too large"), std::string::npos) << run.err;
     EXPECT_NE(run.err.find("figure.png"), std::string::npos) << run.err;

@@ -394,17 +394,18 @@ TEST(ImageFileErrors, WritingIntoAMissingFolderNamesTheFile) {
     }
 }
 
-TEST(ImageFileErrors, RefusesAbsurdSizesAndLayoutsItDoesNotRead) {
-    // A TIFF header (TIFF 6.0 §2, little-endian) of a 65536 x 40000 grey image: 2.6e9 values.
+// A TIFF header (TIFF 6.0 §2, little-endian) of a width x length image of `samples` 8-bit samples a pixel,
+// with no pixel data: min-is-black grey, no compression, one strip of all rows at offset 8.
+std::filesystem::path tiff_header_only(const std::string& name, std::uint32_t width, std::uint32_t length, std::uint32_t samples) {
     std::vector<char> bytes{'I', 'I', 42, 0, 8, 0, 0, 0};
     const auto put = [&](std::uint32_t value, int count) {
         for (int k = 0; k < count; ++k) bytes.push_back(static_cast<char>((value >> (8 * k)) & 0xFF));
     };
-    // Tag, field type (3 SHORT, 4 LONG), value: width, length, 8 bits, no compression, min-is-black, the strip
-    // at offset 8, 1 sample, one strip of all rows, its byte count.
-    const std::vector<std::array<std::uint32_t, 3>> entries{{256, 4, 65536}, {257, 4, 40000}, {258, 3, 8},
-                                                            {259, 3, 1},     {262, 3, 1},     {273, 4, 8},
-                                                            {277, 3, 1},     {278, 4, 40000}, {279, 4, 2621440000u}};
+    // Tag, field type (3 SHORT, 4 LONG), value: width, length, bits, compression, photometric, strip offset,
+    // samples per pixel, rows per strip, strip byte count (truncated to 32 bits: never read).
+    const std::vector<std::array<std::uint32_t, 3>> entries{{256, 4, width}, {257, 4, length}, {258, 3, 8},
+                                                            {259, 3, 1},     {262, 3, samples == 3 ? 2u : 1u}, {273, 4, 8},
+                                                            {277, 3, samples}, {278, 4, length}, {279, 4, width * length * samples}};
     put(static_cast<std::uint32_t>(entries.size()), 2);
     for (const auto& [tag, type, value] : entries) {
         put(tag, 2);
@@ -413,15 +414,30 @@ TEST(ImageFileErrors, RefusesAbsurdSizesAndLayoutsItDoesNotRead) {
         put(value, 4);  // a SHORT (type 3) sits in the first two bytes, little-endian
     }
     put(0, 4);
-    const auto huge = codec_test_file("huge.tif");
-    std::ofstream(huge, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    EXPECT_TRUE(fails_with([&] { read_image_file(huge); }, "the image is too large (65536 x 40000 x 1 values"));
+    const auto path = codec_test_file(name);
+    std::ofstream(path, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    return path;
+}
 
+TEST(ImageFileErrors, RefusesAbsurdSizesAndLayoutsItDoesNotRead) {
+    EXPECT_TRUE(fails_with([] { read_image_file(tiff_header_only("huge.tif", 65536, 40000, 1)); }, "the image is too large (65536 x 40000 x 1 values"));
+    // Each side below 2^31, their product with the channels beyond 2^63: refused with a message (libtiff's own,
+    // before the size check), not an overflow.
+    EXPECT_TRUE(fails_with([] { read_image_file(tiff_header_only("vast.tif", 2147483647, 2147483647, 3)); }, "vast.tif: libtiff: 'Integer overflow'"));
+
+    // One channel is read whatever its name (a thickness map's "Z"); two unknown ones are refused.
     OIIO::ImageSpec depth_spec(3, 2, 1, OIIO::TypeDesc::FLOAT);
     depth_spec.channelnames = {"Z"};
     const auto depth = codec_test_file("depth.exr");
-    write_with_reference(depth, depth_spec, std::vector<float>(6, 1.0f));
-    EXPECT_TRUE(fails_with([&] { read_image_file(depth); }, "its channels are 'Z'; expected R, G, B (and A) or Y (and A)"));
+    write_with_reference(depth, depth_spec, std::vector<float>(6, 1.5f));
+    const DecodedImage read_depth = read_image_file(depth);
+    expect_shape(read_depth, 3, 2, 1, SampleType::float32, 32);
+    EXPECT_EQ(read_depth.values, std::vector<float>(6, 1.5f));
+    OIIO::ImageSpec pair_spec(3, 2, 2, OIIO::TypeDesc::FLOAT);
+    pair_spec.channelnames = {"Z", "W"};
+    const auto pair = codec_test_file("pair.exr");
+    write_with_reference(pair, pair_spec, std::vector<float>(12, 1.0f));
+    EXPECT_TRUE(fails_with([&] { read_image_file(pair); }, "its channels are 'W, Z'; expected R, G, B (and A), Y (and A) or a single channel"));
 
     const auto signed_path = codec_test_file("signed.tif");
     write_with_reference(signed_path, OIIO::ImageSpec(3, 2, 1, OIIO::TypeDesc::INT16), std::vector<std::int16_t>(6, -3));
