@@ -122,17 +122,18 @@ ImageFileType image_file_type_of(const std::filesystem::path& path, std::string_
     std::array<unsigned char, 8> start{};
     const std::size_t count = std::fread(start.data(), 1, start.size(), file.get());
     if (count < start.size() && std::ferror(file.get())) source.fail(detail::errno_text(errno));
-    const auto starts_with = [&](std::initializer_list<unsigned char> signature) {
-        return signature.size() <= count && std::equal(signature.begin(), signature.end(), start.begin());
+    const auto starts_with = [&](const auto& signature) {
+        return std::size(signature) <= count && std::equal(std::begin(signature), std::end(signature), start.begin());
     };
-    // PNG: ISO/IEC 15948:2004 §5.2. TIFF 6.0 §2: byte order "II" or "MM", then 42 (43: BigTIFF). OpenEXR: the
-    // magic number 20000630, little-endian. JPEG (T.81 B.1.1.3): the SOI marker FF D8, then the next marker's FF.
-    if (starts_with({0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'})) return ImageFileType::png;
+    // TIFF 6.0 §2: byte order "II" or "MM", then 42 (43: BigTIFF). OpenEXR: the magic number 20000630,
+    // little-endian. JPEG (T.81 B.1.1.3): the SOI marker FF D8, then the next marker's FF.
+    using Bytes = std::initializer_list<unsigned char>;
+    if (starts_with(kPngSignature)) return ImageFileType::png;
     for (const unsigned char version : std::array<unsigned char, 2>{42, 43}) {
-        if (starts_with({'I', 'I', version, 0}) || starts_with({'M', 'M', 0, version})) return ImageFileType::tiff;
+        if (starts_with(Bytes{'I', 'I', version, 0}) || starts_with(Bytes{'M', 'M', 0, version})) return ImageFileType::tiff;
     }
-    if (starts_with({0x76, 0x2F, 0x31, 0x01})) return ImageFileType::exr;
-    if (starts_with({0xFF, 0xD8, 0xFF})) return ImageFileType::jpeg;
+    if (starts_with(Bytes{0x76, 0x2F, 0x31, 0x01})) return ImageFileType::exr;
+    if (starts_with(Bytes{0xFF, 0xD8, 0xFF})) return ImageFileType::jpeg;
     std::string shown;
     for (std::size_t i = 0; i < count; ++i) {
         std::array<char, 4> hex{};

@@ -2,6 +2,7 @@
 // Image files through the format libraries themselves (libpng, libtiff, OpenEXR, libjpeg): decoding to
 // float values with no colour or gamma conversion, and the few encodings petroscope writes. Every failure
 // throws InputError naming the file; the libraries' own messages are caught, never printed.
+#include <array>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -25,6 +26,9 @@ struct DecodedImage {
 };
 
 enum class ImageFileType { png, tiff, exr, jpeg };
+
+/// The 8 bytes every PNG file starts with (ISO/IEC 15948:2004, §5.2).
+inline constexpr std::array<unsigned char, 8> kPngSignature{0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
 
 /// The file's type by its first bytes (its signature), whatever its name. Throws InputError "cannot read
 /// <what> <path>: …" when the file cannot be opened or is none of the supported types (listing them).

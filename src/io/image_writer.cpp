@@ -23,15 +23,6 @@ ImageFormat image_format_for(const std::filesystem::path& path) {
                      " (expected .png for viewing, or .exr, .tif, .tiff for float data)");
 }
 
-std::string image_format_name(ImageFormat format) {
-    switch (format) {
-        case ImageFormat::png: return "png";
-        case ImageFormat::exr: return "openexr";
-        case ImageFormat::tiff: return "tiff";
-    }
-    return "png";
-}
-
 namespace {
 
 // 8-bit sRGB code of a linear value, round(255·encode_srgb(clamp(v))), as the number of code boundaries

@@ -13,8 +13,6 @@
 namespace petroscope {
 namespace {
 
-constexpr std::array<unsigned char, 8> kPngSignature{0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
-
 std::string channel_words(int channels) {
     switch (channels) {
         case 2: return "2 channels (grey and alpha)";

@@ -3,7 +3,6 @@
 #include "petroscope/core/image.hpp"
 
 #include <filesystem>
-#include <string>
 
 namespace petroscope {
 
@@ -11,7 +10,6 @@ enum class ImageFormat { png, exr, tiff };
 
 /// The format for an output file name by its extension (.png, .exr, .tif, .tiff); throws InputError.
 ImageFormat image_format_for(const std::filesystem::path& path);
-std::string image_format_name(ImageFormat format);
 
 /// Writes `linear_rgb` (3 channels, linear, 1 = white) to `path` in `format`; PNG values are clamped to
 /// [0, 1] and sRGB-encoded. Throws InputError naming the file on any failure.
