@@ -29,9 +29,10 @@ ConoscopeSettings settings_for(const Mineral& mineral, int size_px, bool white) 
     return settings;
 }
 
-void run_figure(benchmark::State& state, const char* mineral_name, bool white) {
+void run_figure(benchmark::State& state, const char* mineral_name, bool white, SpectrumSampling spectrum = SpectrumSampling::interpolated) {
     const Mineral& mineral = catalog().find(mineral_name);
-    const ConoscopeSettings settings = settings_for(mineral, static_cast<int>(state.range(0)), white);
+    ConoscopeSettings settings = settings_for(mineral, static_cast<int>(state.range(0)), white);
+    settings.spectrum = spectrum;
     const PrincipalIndexFunction indices = [&mineral](double nm) { return mineral.principal_n(nm); };
     const SpectralIntegrator integrator(settings.wavelengths_nm, load_cie_1931_observer(), load_light_source("D65"));
     for (auto _ : state) {
@@ -71,6 +72,9 @@ void QuartzThickPlate(benchmark::State& state) {
 
 void WhiteLightBiaxial(benchmark::State& state) { run_figure(state, "muscovite", true); }
 void WhiteLightUniaxial(benchmark::State& state) { run_figure(state, "calcite", true); }
+// The same with the modes solved at every wavelength (--exact-spectrum) instead of at 8 spectral nodes.
+void WhiteLightBiaxialExactSpectrum(benchmark::State& state) { run_figure(state, "muscovite", true, SpectrumSampling::exact); }
+void WhiteLightUniaxialExactSpectrum(benchmark::State& state) { run_figure(state, "calcite", true, SpectrumSampling::exact); }
 void MonochromaticBiaxial(benchmark::State& state) { run_figure(state, "muscovite", false); }
 void MonochromaticUniaxial(benchmark::State& state) { run_figure(state, "calcite", false); }
 
@@ -78,6 +82,8 @@ BENCHMARK(LibraryLayerDefaultFigure)->Arg(512)->Unit(benchmark::kMillisecond)->U
 BENCHMARK(QuartzThickPlate)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(WhiteLightBiaxial)->Arg(128)->Arg(256)->Arg(512)->Arg(1024)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(WhiteLightUniaxial)->Arg(128)->Arg(256)->Arg(512)->Arg(1024)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(WhiteLightBiaxialExactSpectrum)->Arg(512)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(WhiteLightUniaxialExactSpectrum)->Arg(512)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(MonochromaticBiaxial)->Arg(512)->Arg(1024)->Arg(2048)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(MonochromaticUniaxial)->Arg(512)->Arg(1024)->Arg(2048)->Unit(benchmark::kMillisecond)->UseRealTime();
 

@@ -32,6 +32,7 @@ private:
     bool no_analyzer_ = false;
     bool stack_ = false;
     bool exact_ = false;
+    bool exact_spectrum_ = false;
     PlateOptions plate_;
 };
 
@@ -48,6 +49,7 @@ ConoscopeRequest ConoscopeOptions::request() const {
     request.analyzer_in = !no_analyzer_;
     request.mounting = exact_ ? SlabMounting::thin_section_exact : stack_ ? SlabMounting::thin_section : SlabMounting::immersed;
     request.plate = plate_request(plate_);
+    request.spectrum = exact_spectrum_ ? SpectrumSampling::exact : SpectrumSampling::interpolated;
     return request;
 }
 
@@ -80,6 +82,11 @@ nlohmann::json conoscope_sidecar(const ConoscopeRequest& request, const Conoscop
         {"mounting", settings.mounting ? mounting_json(*settings.mounting) : nlohmann::json(nullptr)},
         {"plate", plate_json(settings.plate)},
         {"size_px", settings.size_px},
+        {"spectrum", settings.mounting || plan.light.monochromatic() ? "every wavelength solved"
+                     : settings.spectrum == SpectrumSampling::exact
+                         ? "every wavelength solved (--exact-spectrum)"
+                         : "modes solved at 8 wavelengths and interpolated to the others, every wavelength solved near the optic axes "
+                           "(docs/conoscope.md, White light from spectral nodes)"},
         {"exposure", request.light.exposure},
         {"model", settings.exact ? "exact coherent 4x4 transfer matrix (Berreman) through the whole section, per image point"
                   : settings.mounting ? "single-pass Jones through the whole section (every layer's exact waves, Fresnel at every interface), per image point"
@@ -137,6 +144,9 @@ void ConoscopeOptions::add_options(CLI::App* command) {
         ->excludes(surround);
     command->add_flag("--exact", exact_, "With the whole stack: coherent 4x4 transfer matrix, every multiple reflection; slowest")
         ->excludes(surround);
+    command->add_flag("--exact-spectrum", exact_spectrum_,
+                      "White light: solve the crystal's modes at every wavelength instead of at 8 and interpolating\n"
+                      "(3 to 5 times slower; the reference the default is tested against, docs/conoscope.md)");
 }
 
 }  // namespace

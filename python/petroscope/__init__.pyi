@@ -165,6 +165,7 @@ def conoscope(
     plate: Optional[str] = None,
     plate_slow_deg: float = 45.0,
     wedge_position: float = 0.5,
+    exact_spectrum: bool = False,
     progress: Progress = None,
 ) -> Result: ...
 def fit_conoscope(

@@ -30,6 +30,7 @@ ConoscopePlan plan_conoscope(const ConoscopeRequest& request, const MineralCatal
     settings.analyzer_in = request.analyzer_in;
     settings.surround_n = request.surround_n;
     settings.wavelengths_nm = request.light.wavelengths_nm();
+    settings.spectrum = request.spectrum;
     settings.validate();
 
     const Mineral& mineral = catalog.find(request.mineral);

@@ -1,6 +1,7 @@
 #include "petroscope/microscope/conical_wave.hpp"
 
 #include "petroscope/core/error.hpp"
+#include "petroscope/core/fast_math.hpp"
 #include "petroscope/core/text.hpp"
 
 #include <algorithm>
@@ -25,7 +26,7 @@ constexpr double kHankelFrom = kTaylorIntervals;
 // From kHankelFrom on: Hankel's expansion with kHankelTerms terms in each of P and Q; at x ≥ 20 the first
 // omitted term, √(2/πx)·a₁₆(ν)/x¹⁶, is below 2e-15, and the result agrees with std::cyl_bessel_j to 6e-15.
 constexpr int kHankelTerms = 8;
-// The argument reduction of bessel_hankel keeps its accuracy while k·half_pi_high is exact, k < 2²⁰.
+// sine_cosine (core/fast_math.hpp) keeps its accuracy below 2²⁰·π.
 constexpr double kLargestArgument = 1.0e6;
 
 struct TaylorTables {
@@ -86,13 +87,6 @@ constexpr HankelSeries hankel_series(int order) {
 constexpr HankelSeries kHankel0 = hankel_series(0);
 constexpr HankelSeries kHankel1 = hankel_series(1);
 
-inline double polynomial(const std::array<double, kHankelTerms>& coefficients, double t) {
-    double sum = coefficients[kHankelTerms - 1];
-#pragma GCC unroll 16
-    for (int k = kHankelTerms - 2; k >= 0; --k) sum = sum * t + coefficients[k];
-    return sum;
-}
-
 struct BesselPair {
     double j0, j1;
 };
@@ -112,42 +106,9 @@ inline BesselPair bessel_taylor(const TaylorTables& tables, double x) {
 
 // For kHankelFrom ≤ x < kLargestArgument, branch-free so that loops over x vectorise:
 // J₀ = √(2/πx)(P₀ cos χ − Q₀ sin χ), J₁ = √(2/πx)(P₁ sin χ + Q₁ cos χ), χ = x − π/4 (DLMF 10.17.3; for
-// ν = 1, ω = χ − π/2). cos x and sin x: x = kπ/2 + r with π/2 split in two parts (Cody & Waite 1980;
-// fdlibm's __ieee754_rem_pio2), |r| ≤ π/4, then Taylor series in r (remainders below 1e-17) and the
-// quadrant k mod 4.
+// ν = 1, ω = χ − π/2); cos x and sin x from core/fast_math.hpp.
 inline BesselPair bessel_hankel(double x) {
-    constexpr double two_over_pi = 0.636619772367581343076;
-    constexpr double half_pi_high = 1.57079632673412561417e+00;  // first 33 bits of π/2
-    constexpr double half_pi_low = 6.07710050650619224932e-11;   // π/2 − half_pi_high
-    constexpr double round_shift = 6755399441055744.0;           // 1.5·2⁵²: adding it rounds to an integer
-    const double k = (x * two_over_pi + round_shift) - round_shift;
-    const double r = (x - k * half_pi_high) - k * half_pi_low;
-    const double r2 = r * r;
-    double sine = 1.0 / 1307674368000.0;  // r·Σ (−1)ⁿ r²ⁿ/(2n+1)!, n ≤ 7
-    sine = sine * r2 - 1.0 / 6227020800.0;
-    sine = sine * r2 + 1.0 / 39916800.0;
-    sine = sine * r2 - 1.0 / 362880.0;
-    sine = sine * r2 + 1.0 / 5040.0;
-    sine = sine * r2 - 1.0 / 120.0;
-    sine = sine * r2 + 1.0 / 6.0;
-    sine = r - r * r2 * sine;
-    double cosine = 1.0 / 20922789888000.0;  // Σ (−1)ⁿ r²ⁿ/(2n)!, n ≤ 8
-    cosine = cosine * r2 - 1.0 / 87178291200.0;
-    cosine = cosine * r2 + 1.0 / 479001600.0;
-    cosine = cosine * r2 - 1.0 / 3628800.0;
-    cosine = cosine * r2 + 1.0 / 40320.0;
-    cosine = cosine * r2 - 1.0 / 720.0;
-    cosine = cosine * r2 + 1.0 / 24.0;
-    cosine = cosine * r2 - 0.5;
-    cosine = 1.0 + r2 * cosine;
-    // Quadrant: x = kπ/2 + r turns (cos r, sin r) by k quarter turns.
-    const double quadrant = k - 4.0 * std::floor(0.25 * k);
-    const bool odd = quadrant == 1.0 || quadrant == 3.0;
-    const bool negate = quadrant >= 2.0;
-    double cos_x = odd ? -sine : cosine;
-    double sin_x = odd ? cosine : sine;
-    cos_x = negate ? -cos_x : cos_x;
-    sin_x = negate ? -sin_x : sin_x;
+    const auto [sin_x, cos_x] = sine_cosine(x);
     // cos(x − π/4) = (cos x + sin x)/√2, sin(x − π/4) = (sin x − cos x)/√2.
     constexpr double inverse_sqrt2 = std::numbers::sqrt2 / 2.0;
     const double cos_chi = (cos_x + sin_x) * inverse_sqrt2;

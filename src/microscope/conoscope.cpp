@@ -48,7 +48,7 @@ std::vector<double> conoscope_point_transmission(const ConoscopeSettings& settin
     settings.validate();
     const detail::ConoscopeEvaluator evaluator(settings, principal_n);
     std::vector<double> transmission(evaluator.wavelength_count()), opposite(evaluator.wavelength_count());
-    detail::KernelScratch scratch;
+    detail::SpectralScratch scratch;
     evaluator.spectral_pair(xi, scratch, false, transmission.data(), opposite.data());
     return transmission;
 }
@@ -90,7 +90,7 @@ void require_one_crystal(const std::vector<ConoscopeSettings>& settings) {
         const bool same_crystal = other.crystal_axes == first.crystal_axes && other.stage_deg == first.stage_deg &&
                                   other.thickness_um == first.thickness_um && other.wavelengths_nm == first.wavelengths_nm &&
                                   other.numerical_aperture == first.numerical_aperture && other.size_px == first.size_px &&
-                                  other.surround_n == first.surround_n;
+                                  other.surround_n == first.surround_n && other.spectrum == first.spectrum;
         if (!same_crystal) throw InputError("figures that share their modes may differ in their polars and plate only");
     }
 }
@@ -133,7 +133,7 @@ void for_each_point_pair(const ConoscopeSettings& settings, const ProgressCallba
 /// A thread's buffers for white light.
 struct SpectralState {
     std::vector<double> plus, minus;
-    detail::KernelScratch scratch;
+    detail::SpectralScratch scratch;
 };
 
 /// A thread's batch of pixel pairs in monochromatic light.
@@ -183,7 +183,8 @@ std::vector<Image> render_conoscope_polarization_set(const std::vector<Conoscope
     std::vector<std::unique_ptr<const detail::ConoscopeEvaluator>> evaluators;
     for (const ConoscopeSettings& each : settings) evaluators.push_back(std::make_unique<const detail::ConoscopeEvaluator>(each, principal_n));
     const int size = settings.front().size_px;
-    std::vector<Image> images(settings.size(), Image(size, size, 3));
+    std::vector<Image> images;
+    for (std::size_t k = 0; k < settings.size(); ++k) images.emplace_back(size, size, 3);
     const std::size_t count = evaluators.front()->wavelength_count();
     // XYZ of the transmission spectrum.
     const auto store = [&integrator](Image& image, int column, int row, const std::vector<double>& transmission) {

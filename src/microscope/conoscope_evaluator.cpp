@@ -15,10 +15,12 @@
 namespace petroscope::detail {
 namespace {
 
-std::vector<BinormalFrame> frames_for(const ConoscopeSettings& settings, const PrincipalIndexFunction& principal_n) {
+template <typename Wavelengths>
+std::vector<BinormalFrame> frames_for(const ConoscopeSettings& settings, const PrincipalIndexFunction& principal_n,
+                                      const Wavelengths& wavelengths) {
     const Eigen::Matrix3d axes = rotation_z_deg(settings.stage_deg) * settings.crystal_axes;
     std::vector<BinormalFrame> frames;
-    for (const double wavelength_nm : settings.wavelengths_nm) {
+    for (const double wavelength_nm : wavelengths) {
         const Indicatrix indicatrix{principal_n(wavelength_nm), axes};
         if (!indicatrix.principal_n.allFinite() || indicatrix.principal_n.minCoeff() < 1.0) {
             std::ostringstream what;
@@ -30,9 +32,10 @@ std::vector<BinormalFrame> frames_for(const ConoscopeSettings& settings, const P
     return frames;
 }
 
-std::vector<double> k0_thickness_for(const ConoscopeSettings& settings, double thickness_um) {
+template <typename Wavelengths>
+std::vector<double> k0_thickness_for(const Wavelengths& wavelengths, double thickness_um) {
     std::vector<double> values;
-    for (const double wavelength_nm : settings.wavelengths_nm) {
+    for (const double wavelength_nm : wavelengths) {
         values.push_back(2.0 * std::numbers::pi * thickness_um * 1e3 / wavelength_nm);
     }
     return values;
@@ -56,11 +59,16 @@ SampleCrystal samples_of(const std::vector<BinormalFrame>& frames, const std::ve
 ConoscopeEvaluator::ConoscopeEvaluator(const ConoscopeSettings& settings, const PrincipalIndexFunction& principal_n)
     : settings_(settings),
       polars_{unit_at(settings.polarizer_deg), unit_at(settings.analyzer_deg), settings.analyzer_in},
-      frames_(frames_for(settings, principal_n)),
-      k0_thickness_(k0_thickness_for(settings, settings.thickness_um)),
-      k0_per_um_(k0_thickness_for(settings, 1.0)),
+      frames_(frames_for(settings, principal_n, settings.wavelengths_nm)),
+      k0_thickness_(k0_thickness_for(settings.wavelengths_nm, settings.thickness_um)),
+      k0_per_um_(k0_thickness_for(settings.wavelengths_nm, 1.0)),
       spectral_samples_(samples_of(frames_, k0_thickness_, settings.surround_n, 1)) {
     if (frames_.size() == 1) monochromatic_samples_ = samples_of(frames_, k0_thickness_, settings.surround_n, kMonochromaticBatch);
+    if (settings.spectrum == SpectrumSampling::interpolated && frames_.size() >= 2 * kSpectralNodes) {
+        nodes_.emplace(settings.wavelengths_nm);
+        node_frames_ = frames_for(settings, principal_n, nodes_->wavelengths_nm());
+        node_samples_ = samples_of(node_frames_, k0_thickness_for(nodes_->wavelengths_nm(), settings.thickness_um), settings.surround_n, 1);
+    }
     if (settings.plate) {
         for (const double wavelength_nm : settings.wavelengths_nm) plate_jones_lab_.push_back(plate_jones_lab(*settings.plate, wavelength_nm, false));
         set_plate(spectral_samples_, plate_jones_lab_, polars_);
@@ -68,8 +76,37 @@ ConoscopeEvaluator::ConoscopeEvaluator(const ConoscopeSettings& settings, const 
     }
 }
 
-void ConoscopeEvaluator::spectral_pair(const Eigen::Vector2d& xi, KernelScratch& scratch, bool continues_row,
-                                       double* out_plus, double* out_minus) const {
+void ConoscopeEvaluator::spectral_pair(const Eigen::Vector2d& xi, SpectralScratch& scratch, bool continues_row, double* out_plus,
+                                       double* out_minus) const {
+    scratch.interpolated = false;
+    if (nodes_) {
+        KernelScratch& at_nodes = scratch.nodes;
+        if (at_nodes.failed.size() != node_samples_->padded_size()) {
+            at_nodes.resize(node_samples_->padded_size());
+            at_nodes.warm_ready = false;
+        }
+        set_sample_directions(at_nodes, 0, node_samples_->padded_size(), xi);
+        const bool warm = continues_row && at_nodes.warm_ready;
+        bool any_failed = run_kernel(*node_samples_, polars_, at_nodes, warm, KernelOutput::fields);
+        if (any_failed && warm) any_failed = run_kernel(*node_samples_, polars_, at_nodes, false, KernelOutput::fields);
+        scratch.interpolated = !any_failed && smooth_over_spectrum(at_nodes) && interpolated_pair(at_nodes, out_plus, out_minus);
+    }
+    if (!scratch.interpolated) exact_pair(xi, scratch.every_wavelength, continues_row, out_plus, out_minus);
+}
+
+void ConoscopeEvaluator::spectral_pair_same_modes(const Eigen::Vector2d& xi, SpectralScratch& scratch, double* out_plus, double* out_minus) const {
+    if (scratch.interpolated) {
+        // The modes are those of every evaluator of the set; the fields depend on the polarizer, and where
+        // these cannot be interpolated every wavelength is solved after all.
+        retransmit(*node_samples_, polars_, scratch.nodes, KernelOutput::fields);
+        if (!interpolated_pair(scratch.nodes, out_plus, out_minus)) exact_pair(xi, scratch.every_wavelength, false, out_plus, out_minus);
+    } else {
+        collect_pair(xi, scratch.every_wavelength, retransmit(spectral_samples_, polars_, scratch.every_wavelength), out_plus, out_minus);
+    }
+}
+
+void ConoscopeEvaluator::exact_pair(const Eigen::Vector2d& xi, KernelScratch& scratch, bool continues_row, double* out_plus,
+                                    double* out_minus) const {
     if (scratch.failed.size() != spectral_samples_.padded_size()) {
         scratch.resize(spectral_samples_.padded_size());
         scratch.warm_ready = false;
@@ -80,10 +117,6 @@ void ConoscopeEvaluator::spectral_pair(const Eigen::Vector2d& xi, KernelScratch&
     // A warm start too far from the roots (coarse pixels): start again from scratch, still vectorised.
     if (any_failed && warm) any_failed = run_kernel(spectral_samples_, polars_, scratch, false);
     collect_pair(xi, scratch, any_failed, out_plus, out_minus);
-}
-
-void ConoscopeEvaluator::spectral_pair_same_modes(const Eigen::Vector2d& xi, KernelScratch& scratch, double* out_plus, double* out_minus) const {
-    collect_pair(xi, scratch, retransmit(spectral_samples_, polars_, scratch), out_plus, out_minus);
 }
 
 void ConoscopeEvaluator::collect_pair(const Eigen::Vector2d& xi, const KernelScratch& scratch, bool any_failed, double* out_plus,
@@ -109,8 +142,8 @@ void ConoscopeEvaluator::spectral_terms(const Eigen::Vector2d& xi, KernelScratch
     }
     set_sample_directions(scratch, 0, spectral_samples_.padded_size(), xi);
     const bool warm = continues_row && scratch.warm_ready;
-    bool any_failed = run_kernel(spectral_samples_, polars_, scratch, warm, true);
-    if (any_failed && warm) any_failed = run_kernel(spectral_samples_, polars_, scratch, false, true);
+    bool any_failed = run_kernel(spectral_samples_, polars_, scratch, warm, KernelOutput::terms);
+    if (any_failed && warm) any_failed = run_kernel(spectral_samples_, polars_, scratch, false, KernelOutput::terms);
     for (std::size_t w = 0; w < spectral_samples_.size(); ++w) {
         if (any_failed && scratch.failed[w] != 0) {
             out[w] = reference_terms(w, xi);

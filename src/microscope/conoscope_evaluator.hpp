@@ -1,8 +1,9 @@
 #pragma once
 // Everything of a conoscopic figure that does not depend on the image point, and the evaluation of pairs
 // of opposite directions: the vectorised kernel, with the reference path (optics/slab.hpp) for the
-// samples it flags.
+// samples it flags; in white light the modes at a few spectral nodes, interpolated (spectral_nodes.hpp).
 #include "conoscope_kernel.hpp"
+#include "spectral_nodes.hpp"
 
 #include "petroscope/microscope/conoscope.hpp"
 #include "petroscope/optics/slab.hpp"
@@ -10,6 +11,13 @@
 #include <optional>
 
 namespace petroscope::detail {
+
+/// A thread's arrays for white light.
+struct SpectralScratch {
+    KernelScratch nodes;             // the modes at the spectral nodes
+    KernelScratch every_wavelength;  // the modes at every wavelength (exact spectrum; points near an optic axis)
+    bool interpolated = false;       // how the last pair was computed
+};
 
 class ConoscopeEvaluator {
 public:
@@ -20,14 +28,20 @@ public:
 
     std::size_t wavelength_count() const { return frames_.size(); }
 
+    /// Whether white light is interpolated from spectral nodes (SpectrumSampling::interpolated and a grid
+    /// of at least 2·kSpectralNodes wavelengths).
+    bool interpolates() const { return nodes_.has_value(); }
+
     /// Transmission at every wavelength for ξ (out_plus) and −ξ (out_minus). `continues_row`: the previous
-    /// call with this scratch was for a neighbouring ξ, whose roots can start the iterations.
-    void spectral_pair(const Eigen::Vector2d& xi, KernelScratch& scratch, bool continues_row, double* out_plus,
+    /// call with this scratch was for a neighbouring ξ, whose roots can start the iterations. Interpolated
+    /// from the spectral nodes unless the settings ask for the exact spectrum or ξ is too near an optic axis
+    /// for the interpolation (then every wavelength is solved).
+    void spectral_pair(const Eigen::Vector2d& xi, SpectralScratch& scratch, bool continues_row, double* out_plus,
                        double* out_minus) const;
 
     /// After spectral_pair for the same ξ and scratch by an evaluator of the same crystal, stage, thickness and
     /// wavelengths (only polars and plate differ): this evaluator's transmission, from the modes in `scratch`.
-    void spectral_pair_same_modes(const Eigen::Vector2d& xi, KernelScratch& scratch, double* out_plus, double* out_minus) const;
+    void spectral_pair_same_modes(const Eigen::Vector2d& xi, SpectralScratch& scratch, double* out_plus, double* out_minus) const;
 
     /// Monochromatic light: transmission for each ξ of `xis` (at most kMonochromaticBatch) and its −ξ.
     void monochromatic_pairs(const std::vector<Eigen::Vector2d>& xis, KernelScratch& scratch, double* out_plus,
@@ -41,6 +55,15 @@ public:
     std::array<double, 2> reference_pair(std::size_t w, const Eigen::Vector2d& xi) const;
 
 private:
+    /// spectral_pair with the modes solved at every wavelength.
+    void exact_pair(const Eigen::Vector2d& xi, KernelScratch& scratch, bool continues_row, double* out_plus, double* out_minus) const;
+    /// Whether the modes of ξ and −ξ left at the nodes in `scratch` are smooth enough over the spectrum to be
+    /// interpolated: each wave normal N̂ stays far from each binormal b compared with how far N̂ × b moves
+    /// over the spectrum (that motion puts the nearest singularity of the modes in the complex σ plane).
+    bool smooth_over_spectrum(const KernelScratch& scratch) const;
+    /// The transmission at every wavelength from the node fields in `scratch` (run with KernelOutput::fields);
+    /// false, with nothing written, where the fields or δ cannot be interpolated accurately enough.
+    bool interpolated_pair(const KernelScratch& scratch, double* out_plus, double* out_minus) const;
     /// The kernel's transmission at every wavelength, the reference path's where a sample failed.
     void collect_pair(const Eigen::Vector2d& xi, const KernelScratch& scratch, bool any_failed, double* out_plus, double* out_minus) const;
     /// The slab's transfer for ξ (index 0) and −ξ (1) at wavelength index `w`; none where a sheet has no
@@ -65,6 +88,10 @@ private:
     SampleCrystal spectral_samples_;                     // one sample per wavelength
     std::optional<SampleCrystal> monochromatic_samples_;  // the single wavelength, kMonochromaticBatch times
     std::vector<Eigen::Matrix2cd> plate_jones_lab_;       // per wavelength; empty without a plate
+    // White light from spectral nodes (none: every wavelength solved).
+    std::optional<SpectralNodes> nodes_;
+    std::vector<BinormalFrame> node_frames_;
+    std::optional<SampleCrystal> node_samples_;
 };
 
 }  // namespace petroscope::detail

@@ -208,9 +208,10 @@ void solve_vibrations(const SampleCrystal& crystal, KernelScratch& scratch) {
 // Single-pass transmission for one side from its forward modes and the other side's (time-reversed:
 // the backward modes), after optics/slab.cpp's slab_transfer and the conoscope's analyzed intensity.
 // With a plate, the effective analyzers of SampleCrystal::plate_analyzer take the analyzer's place.
-template <bool AnalyzerIn, bool Terms, bool Plate, int Side>
+template <bool AnalyzerIn, KernelOutput Output, bool Plate, int Side>
 void side_transmission(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch) {
-    static_assert(!(Plate && Terms), "interference terms are defined without a plate only");
+    static_assert(!(Plate && Output != KernelOutput::transmission), "terms and fields are defined without a plate only");
+    constexpr bool Terms = Output == KernelOutput::terms;
     constexpr int other = 1 - Side;
     const double *rho_x0 = scratch.rho_x.data(), *rho_y0 = scratch.rho_y.data(), *reversal = scratch.reversal.data();
     const double *xi_x0 = scratch.xi_x.data(), *xi_y0 = scratch.xi_y.data();
@@ -225,6 +226,9 @@ void side_transmission(const SampleCrystal& crystal, const PolarizerPair& polars
     const double* k0_thickness = crystal.k0_thickness.data();
     double* out = scratch.transmission[Side].data();
     double *mean = scratch.mean[Side].data(), *modulation = scratch.modulation[Side].data();
+    auto& field = scratch.mode_field[Side];
+    double *field_s0 = field[0].data(), *field_s1 = field[1].data(), *field_p0 = field[2].data(), *field_p1 = field[3].data();
+    double* phase = scratch.phase_difference[Side].data();
     const double pol_x = polars.polarizer.x(), pol_y = polars.polarizer.y();
     const double ana_x = polars.analyzer.x(), ana_y = polars.analyzer.y();
     const auto& plate = crystal.plate_analyzer;
@@ -269,29 +273,32 @@ void side_transmission(const SampleCrystal& crystal, const PolarizerPair& polars
         const double e00 = f00 - (bp00 * r00 + bp01 * r10), e01 = f01 - (bp00 * r01 + bp01 * r11);
         const double e10 = f10 - (bp10 * r00 + bp11 * r10), e11 = f11 - (bp10 * r01 + bp11 * r11);
         const double sin2 = sin_squared(0.5 * k0_thickness[i] * (qf[i] - qs[i]));
+        // The field each mode leaves with, in (ŝ, ρ̂).
+        const double s_fast = e00 * t0, s_slow = e01 * t1, p_fast = e10 * t0, p_slow = e11 * t1;
+        if constexpr (Output == KernelOutput::fields) {
+            field_s0[i] = s_fast;
+            field_s1[i] = s_slow;
+            field_p0[i] = p_fast;
+            field_p1[i] = p_slow;
+            phase[i] = k0_thickness[i] * (qf[i] - qs[i]);
+        }
         if constexpr (Plate) {
-            // |bᵀE|² for E = Σₘ Eₘ e^{iφₘ} (Eₘ real), b = b_re + i b_im: with αₘ = b_re·Eₘ, βₘ = b_im·Eₘ and
-            // δ = φ₀ − φ₁ it is Σₘ(αₘ² + βₘ²) + 2(α₀α₁ + β₀β₁)cos δ + 2(α₀β₁ − β₀α₁)sin δ.
             const double cos_delta = 1.0 - 2.0 * sin2, sin_delta = sine(k0_thickness[i] * (qf[i] - qs[i]));
             const auto analyzed = [&](double re_x, double re_y, double im_x, double im_y) {
-                const double re_s = re_x * s_x + re_y * s_y, re_p = re_x * rho_x + re_y * rho_y;
-                const double im_s = im_x * s_x + im_y * s_y, im_p = im_x * rho_x + im_y * rho_y;
-                const double alpha0 = (re_s * e00 + re_p * e10) * t0, alpha1 = (re_s * e01 + re_p * e11) * t1;
-                const double beta0 = (im_s * e00 + im_p * e10) * t0, beta1 = (im_s * e01 + im_p * e11) * t1;
-                return alpha0 * alpha0 + alpha1 * alpha1 + beta0 * beta0 + beta1 * beta1 +
-                       2.0 * (alpha0 * alpha1 + beta0 * beta1) * cos_delta + 2.0 * (alpha0 * beta1 - beta0 * alpha1) * sin_delta;
+                return complex_analyzer_intensity(re_x * s_x + re_y * s_y, re_x * rho_x + re_y * rho_y, im_x * s_x + im_y * s_y,
+                                                  im_x * rho_x + im_y * rho_y, s_fast, p_fast, s_slow, p_slow, cos_delta, sin_delta);
             };
             out[i] = analyzed(b0_re_x[i], b0_re_y[i], b0_im_x[i], b0_im_y[i]);
             if constexpr (!AnalyzerIn) out[i] += analyzed(b1_re_x[i], b1_re_y[i], b1_im_x[i], b1_im_y[i]);
         } else if constexpr (AnalyzerIn) {
-            const double u0 = (a_s * e00 + a_p * e10) * t0, u1 = (a_s * e01 + a_p * e11) * t1;
+            const double u0 = a_s * s_fast + a_p * p_fast, u1 = a_s * s_slow + a_p * p_slow;
             out[i] = pair_intensity(u0, u1, sin2);
             if constexpr (Terms) {
                 mean[i] = u0 * u0 + u1 * u1;
                 modulation[i] = 2.0 * u0 * u1;
             }
         } else {
-            const double u0 = e00 * t0, u1 = e01 * t1, v0 = e10 * t0, v1 = e11 * t1;
+            const double u0 = s_fast, u1 = s_slow, v0 = p_fast, v1 = p_slow;
             out[i] = pair_intensity(u0, u1, sin2) + pair_intensity(v0, v1, sin2);
             if constexpr (Terms) {
                 mean[i] = u0 * u0 + u1 * u1 + v0 * v0 + v1 * v1;
@@ -313,14 +320,14 @@ void solve_side(const SampleCrystal& crystal, KernelScratch& scratch, bool warm)
     solve_vibrations<1, Side>(crystal, scratch);
 }
 
-template <bool Terms, bool Plate>
+template <KernelOutput Output, bool Plate>
 void transmission_of_both_sides(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch) {
     if (polars.analyzer_in) {
-        side_transmission<true, Terms, Plate, 0>(crystal, polars, scratch);
-        side_transmission<true, Terms, Plate, 1>(crystal, polars, scratch);
+        side_transmission<true, Output, Plate, 0>(crystal, polars, scratch);
+        side_transmission<true, Output, Plate, 1>(crystal, polars, scratch);
     } else {
-        side_transmission<false, Terms, Plate, 0>(crystal, polars, scratch);
-        side_transmission<false, Terms, Plate, 1>(crystal, polars, scratch);
+        side_transmission<false, Output, Plate, 0>(crystal, polars, scratch);
+        side_transmission<false, Output, Plate, 1>(crystal, polars, scratch);
     }
 }
 
@@ -380,7 +387,10 @@ void KernelScratch::resize(std::size_t padded_samples) {
     }
     for (auto& side : psi) for (auto& sheet : side) for (auto& component : sheet) component.resize(padded_samples);
     for (auto& side : sheet_failed) for (auto& sheet : side) sheet.resize(padded_samples);
-    for (auto* set : {&previous_xi_x, &previous_xi_y, &transmission, &mean, &modulation}) for (auto& side : *set) side.resize(padded_samples);
+    for (auto* set : {&previous_xi_x, &previous_xi_y, &transmission, &mean, &modulation, &phase_difference}) {
+        for (auto& side : *set) side.resize(padded_samples);
+    }
+    for (auto& side : mode_field) for (auto& component : side) component.resize(padded_samples);
     failed.resize(padded_samples);
 }
 
@@ -396,13 +406,15 @@ void set_sample_directions(KernelScratch& scratch, std::size_t first, std::size_
 namespace {
 
 /// The transmission from the modes in `scratch`, and each sample's failure flag; whether any failed.
-bool transmit_and_flag(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch, bool terms) {
-    if (terms) {
-        transmission_of_both_sides<true, false>(crystal, polars, scratch);
+bool transmit_and_flag(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch, KernelOutput output) {
+    if (output == KernelOutput::terms) {
+        transmission_of_both_sides<KernelOutput::terms, false>(crystal, polars, scratch);
+    } else if (output == KernelOutput::fields) {
+        transmission_of_both_sides<KernelOutput::fields, false>(crystal, polars, scratch);
     } else if (crystal.with_plate) {
-        transmission_of_both_sides<false, true>(crystal, polars, scratch);
+        transmission_of_both_sides<KernelOutput::transmission, true>(crystal, polars, scratch);
     } else {
-        transmission_of_both_sides<false, false>(crystal, polars, scratch);
+        transmission_of_both_sides<KernelOutput::transmission, false>(crystal, polars, scratch);
     }
     // A sample needs all four modes (each side's backward modes are the other side's forward ones).
     const int count = static_cast<int>(crystal.size());
@@ -422,7 +434,7 @@ bool transmit_and_flag(const SampleCrystal& crystal, const PolarizerPair& polars
 
 }  // namespace
 
-bool run_kernel(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch, bool warm, bool terms) {
+bool run_kernel(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch, bool warm, KernelOutput output) {
     if (crystal.uniaxial) {
         solve_side<true, 0>(crystal, scratch, warm);
         solve_side<true, 1>(crystal, scratch, warm);
@@ -430,7 +442,7 @@ bool run_kernel(const SampleCrystal& crystal, const PolarizerPair& polars, Kerne
         solve_side<false, 0>(crystal, scratch, warm);
         solve_side<false, 1>(crystal, scratch, warm);
     }
-    const bool any_failed = transmit_and_flag(crystal, polars, scratch, terms);
+    const bool any_failed = transmit_and_flag(crystal, polars, scratch, output);
     // The next run may start from these roots only if all of them are good.
     scratch.warm_ready = !any_failed;
     const int padded = static_cast<int>(crystal.padded_size());
@@ -447,8 +459,8 @@ bool run_kernel(const SampleCrystal& crystal, const PolarizerPair& polars, Kerne
     return any_failed;
 }
 
-bool retransmit(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch) {
-    return transmit_and_flag(crystal, polars, scratch, false);
+bool retransmit(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch, KernelOutput output) {
+    return transmit_and_flag(crystal, polars, scratch, output);
 }
 
 }  // namespace petroscope::detail

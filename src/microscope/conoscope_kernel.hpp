@@ -68,8 +68,14 @@ struct KernelScratch {
     // Flags are 8-byte integers: a narrower type would make the vectoriser process 64 samples at a time.
     std::array<std::array<std::vector<std::int64_t>, 2>, 2> sheet_failed;
     std::array<std::vector<double>, 2> transmission;
-    // With `terms`: transmission = mean + modulation·cos(k₀d(q_fast − q_slow)) (microscope/interference.hpp).
+    // KernelOutput::terms: transmission = mean + modulation·cos(k₀d(q_fast − q_slow)) (microscope/interference.hpp).
     std::array<std::vector<double>, 2> mean, modulation;
+    // KernelOutput::fields: the field each mode leaves the slab with, before its phase, and the phase
+    // difference δ = k₀d(q_fast − q_slow). mode_field[side]: s component of the fast and slow mode, then
+    // p component of the fast and slow mode (rows s, p of ŝ, ρ̂; real in a lossless crystal). Unlike ψ
+    // these do not depend on the sign chosen for each eigenvector, so they are smooth in wavelength.
+    std::array<std::array<std::vector<double>, 4>, 2> mode_field;
+    std::array<std::vector<double>, 2> phase_difference;
     std::vector<std::int64_t> failed;  // per sample: recompute with the reference path
     bool warm_ready = false;           // the last run's roots can start the next run's iterations
 };
@@ -77,18 +83,25 @@ struct KernelScratch {
 /// Sets the geometry of samples first … first + count − 1 to the pair (ξ, −ξ).
 void set_sample_directions(KernelScratch& scratch, std::size_t first, std::size_t count, const Eigen::Vector2d& xi);
 
+/// What run_kernel leaves in the scratch besides the transmission.
+enum class KernelOutput {
+    transmission,  // only the transmission
+    terms,         // also scratch.mean and scratch.modulation (no plate)
+    fields,        // also scratch.mode_field and scratch.phase_difference (no plate)
+};
+
 /// Transmission of every sample into scratch.transmission[side]. With `warm` (allowed when
 /// scratch.warm_ready), each sample's Newton iterations start from the previous run's roots moved along
-/// ∂q/∂ξ: the samples must be the same wavelengths as then, at a nearby ξ. With `terms`, also the
-/// thickness-independent terms into scratch.mean and scratch.modulation. Returns whether any sample was
-/// flagged in scratch.failed.
+/// ∂q/∂ξ: the samples must be the same wavelengths as then, at a nearby ξ. `output` says what else is
+/// kept. Returns whether any sample was flagged in scratch.failed.
 bool run_kernel(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch, bool warm,
-                bool terms = false);
+                KernelOutput output = KernelOutput::transmission);
 
 /// The transmission through other polars and another plate from the modes that a run_kernel left in
 /// `scratch`, for `crystal` with the same frames and directions (only its plate may differ); flags failures
 /// as run_kernel does and leaves the warm start alone. The modes are most of the work: figures that differ
 /// only in polars and plate cost little more than one (the live microscope's stage harmonics).
-bool retransmit(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch);
+bool retransmit(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch,
+                KernelOutput output = KernelOutput::transmission);
 
 }  // namespace petroscope::detail

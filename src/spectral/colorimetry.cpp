@@ -43,14 +43,23 @@ SpectralIntegrator::SpectralIntegrator(const std::vector<double>& wavelengths_nm
     for (auto& weight : weights_) {
         weight /= normalisation;
         white_xyz_ += weight;
+        for (int c = 0; c < 3; ++c) channel_weights_[static_cast<std::size_t>(c)].push_back(weight[c]);
     }
 }
 
 Eigen::Vector3d SpectralIntegrator::integrate(const std::vector<double>& transmission) const {
     if (transmission.size() != weights_.size()) throw std::invalid_argument("transmission size differs from the grid");
-    Eigen::Vector3d xyz = Eigen::Vector3d::Zero();
-    for (std::size_t i = 0; i < weights_.size(); ++i) xyz += transmission[i] * weights_[i];
-    return xyz;
+    const double *t = transmission.data(), *wx = channel_weights_[0].data(), *wy = channel_weights_[1].data();
+    const double* wz = channel_weights_[2].data();
+    double x = 0.0, y = 0.0, z = 0.0;
+    const int count = static_cast<int>(transmission.size());
+#pragma omp simd reduction(+ : x, y, z)
+    for (int i = 0; i < count; ++i) {
+        x += t[i] * wx[i];
+        y += t[i] * wy[i];
+        z += t[i] * wz[i];
+    }
+    return {x, y, z};
 }
 
 }  // namespace petroscope

@@ -218,6 +218,25 @@ TEST_F(Cli, ConoscopeWritesFloatExr) {
     EXPECT_EQ(sidecar["mineral"]["name"], "muscovite");
 }
 
+TEST_F(Cli, ConoscopeExactSpectrumSolvesEveryWavelengthAndSaysSo) {
+    const fs::path interpolated = out() / "interpolated.exr", exact = out() / "exact.exr";
+    const CommandResult first = petroscope("conoscope --mineral calcite --thickness 300um --size 64 -o " + quoted(interpolated));
+    const CommandResult second = petroscope("conoscope --mineral calcite --thickness 300um --size 64 --exact-spectrum -o " + quoted(exact));
+    ASSERT_EQ(first.exit_code, 0) << first.err;
+    ASSERT_EQ(second.exit_code, 0) << second.err;
+    const Image a = read_image(interpolated), b = read_image(exact);
+    ASSERT_EQ(a.pixels.size(), b.pixels.size());
+    double largest = 0.0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) largest = std::max(largest, static_cast<double>(std::abs(a.pixels[i] - b.pixels[i])));
+    // The library's tests hold the two to ΔE₀₀ ≤ 6e-3 (tests/microscope/test_conoscope_spectrum.cpp).
+    EXPECT_LT(largest, 1e-4);
+    const auto spectrum = [this](const char* name) {
+        return nlohmann::json::parse(read_text(out() / (std::string(name) + ".exr.json")))["spectrum"].get<std::string>();
+    };
+    EXPECT_NE(spectrum("interpolated").find("interpolated"), std::string::npos);
+    EXPECT_EQ(spectrum("exact"), "every wavelength solved (--exact-spectrum)");
+}
+
 
 // ---- petroscope interface and verify (issue 3) ----
 

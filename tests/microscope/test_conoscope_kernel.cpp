@@ -47,7 +47,7 @@ TEST(ConoscopeKernel, MatchesTheReferencePathEverywhere) {
             return Eigen::Vector3d((n_550.array() + 0.004 * (550.0 * 550.0 / (nm * nm) - 1.0)).matrix());
         };
         const detail::ConoscopeEvaluator evaluator(settings, indices);
-        detail::KernelScratch scratch;
+        detail::SpectralScratch scratch;
         std::vector<double> plus(5), minus(5);
         const BinormalFrame frame(Indicatrix{indices(550.0), indicatrix.axes});
         for (int direction = 0; direction < 40; ++direction) {
@@ -106,7 +106,7 @@ TEST(ConoscopeKernel, WarmStartsAlongARowAndMonochromaticBatchesMatchTheReferenc
         // A row of pixels at the spacing of a 256-pixel figure, warm-started one from the next.
         settings.wavelengths_nm = {420.0, 470.0, 520.0, 570.0, 620.0, 670.0, 720.0, 770.0, 780.0};
         const detail::ConoscopeEvaluator spectral(settings, indices);
-        detail::KernelScratch scratch;
+        detail::SpectralScratch scratch;
         std::vector<double> plus(settings.wavelengths_nm.size()), minus(plus.size());
         const double y = 0.9 * (2.0 * unit(rng) - 1.0) * 0.7;
         for (int column = 0; column < 40; ++column) {
@@ -124,7 +124,7 @@ TEST(ConoscopeKernel, WarmStartsAlongARowAndMonochromaticBatchesMatchTheReferenc
         for (int k = 0; k < 100; ++k) {
             xis.push_back(0.95 * std::sqrt(unit(rng)) * Eigen::Vector2d(std::cos(2 * M_PI * unit(rng)), std::sin(2 * M_PI * unit(rng))));
         }
-        worst_batch = std::max(worst_batch, batch_difference(monochromatic, xis, scratch));
+        worst_batch = std::max(worst_batch, batch_difference(monochromatic, xis, scratch.every_wavelength));
     }
     // 30 µm: k₀d ≤ 4.5e2, so the phase rounding is below 1e-12.
     EXPECT_LT(worst_row, 1e-12);
@@ -154,7 +154,7 @@ TEST(ConoscopeKernel, WithAPlateMatchesTheReferencePath) {
             return Eigen::Vector3d((indicatrix.principal_n.array() + 0.004 * (550.0 * 550.0 / (nm * nm) - 1.0)).matrix());
         };
         const detail::ConoscopeEvaluator spectral(settings, indices);
-        detail::KernelScratch scratch;
+        detail::SpectralScratch scratch;
         std::vector<double> plus(5), minus(5);
         std::vector<Eigen::Vector2d> xis;
         for (int direction = 0; direction < 30; ++direction) {
@@ -168,7 +168,7 @@ TEST(ConoscopeKernel, WithAPlateMatchesTheReferencePath) {
         }
         settings.wavelengths_nm = {589.3};
         const detail::ConoscopeEvaluator monochromatic(settings, indices);
-        worst_batch = std::max(worst_batch, batch_difference(monochromatic, xis, scratch));
+        worst_batch = std::max(worst_batch, batch_difference(monochromatic, xis, scratch.every_wavelength));
     }
     EXPECT_LT(worst_spectral, 1e-12);
     EXPECT_LT(worst_batch, 1e-12);

@@ -39,6 +39,8 @@ struct ConoscopeRequest {
     double surround_n = 1.54;  // immersed only
     SlabMounting mounting = SlabMounting::immersed;
     std::optional<PlateRequest> plate;
+    /// White light in an immersed slab: modes at spectral nodes, interpolated (default), or at every wavelength.
+    SpectrumSampling spectrum = SpectrumSampling::interpolated;
 };
 
 /// A request checked and resolved against the catalog, ready to render. It refers to the catalog's

@@ -1,18 +1,29 @@
 #pragma once
 // Branch-free elementary functions that compilers can vectorise (std::sin cannot be, without
 // -ffast-math), accurate to a few ulp.
+#include <array>
 #include <cmath>
+#include <cstddef>
 
 namespace petroscope {
 
+/// c₀ + c₁t + … + c_{N−1}t^{N−1} by Horner's rule, unrolled so that loops calling it vectorise.
+template <std::size_t N>
+inline double polynomial(const std::array<double, N>& coefficients, double t) {
+    double sum = coefficients[N - 1];
+#pragma GCC unroll 32
+    for (std::size_t k = N - 1; k > 0; --k) sum = sum * t + coefficients[k - 1];
+    return sum;
+}
+
 namespace fast_math_detail {
 
-/// x = kπ + r with |r| ≤ π/2: sin r and k. π is split in two parts (Cody & Waite 1980; the split of fdlibm's
-/// __ieee754_rem_pio2), then sin r is the Taylor series to degree 23 (truncation < 1e-20).
-struct ReducedSine {
-    double sine_r, k;
+/// x = kπ + r with |r| ≤ π/2. π is split in two parts (Cody & Waite 1980; the split of fdlibm's
+/// __ieee754_rem_pio2).
+struct Reduction {
+    double r, k;
 };
-inline ReducedSine reduced_sine(double x) {
+inline Reduction reduce_by_pi(double x) {
     constexpr double inverse_pi = 0.318309886183790671538;
     constexpr double pi_high = 3.14159265346825122833e+00;   // first 33 bits of π: k·pi_high is exact
     constexpr double pi_low = 1.21542010130123844986e-10;    // π − pi_high
@@ -20,37 +31,52 @@ inline ReducedSine reduced_sine(double x) {
     // unlike nearbyint under strict floating-point semantics).
     constexpr double round_shift = 6755399441055744.0;
     const double k = (x * inverse_pi + round_shift) - round_shift;
-    const double r = (x - k * pi_high) - k * pi_low;
-    const double r2 = r * r;
-    // sin r = r·Σ (−1)ⁿ r²ⁿ/(2n+1)!, Horner from the degree-23 term.
-    double series = -1.0 / 25852016738884976640000.0;
-    series = series * r2 + 1.0 / 51090942171709440000.0;
-    series = series * r2 - 1.0 / 121645100408832000.0;
-    series = series * r2 + 1.0 / 355687428096000.0;
-    series = series * r2 - 1.0 / 1307674368000.0;
-    series = series * r2 + 1.0 / 6227020800.0;
-    series = series * r2 - 1.0 / 39916800.0;
-    series = series * r2 + 1.0 / 362880.0;
-    series = series * r2 - 1.0 / 5040.0;
-    series = series * r2 + 1.0 / 120.0;
-    series = series * r2 - 1.0 / 6.0;
-    series = series * r2 + 1.0;
-    return {r * series, k};
+    return {(x - k * pi_high) - k * pi_low, k};
 }
+
+/// sin r for |r| ≤ π/2: the Taylor series to degree 23 (truncation < 1e-20), r·Σ (−1)ⁿ r²ⁿ/(2n+1)!.
+inline double sine_series(double r) {
+    constexpr std::array<double, 12> coefficients{1.0, -1.0 / 6.0, 1.0 / 120.0, -1.0 / 5040.0, 1.0 / 362880.0, -1.0 / 39916800.0,
+                                                  1.0 / 6227020800.0, -1.0 / 1307674368000.0, 1.0 / 355687428096000.0,
+                                                  -1.0 / 121645100408832000.0, 1.0 / 51090942171709440000.0,
+                                                  -1.0 / 25852016738884976640000.0};
+    return r * polynomial(coefficients, r * r);
+}
+
+/// cos r for |r| ≤ π/2: the Taylor series to degree 22 (truncation < 1e-19), Σ (−1)ⁿ r²ⁿ/(2n)!.
+inline double cosine_series(double r) {
+    constexpr std::array<double, 12> coefficients{1.0, -1.0 / 2.0, 1.0 / 24.0, -1.0 / 720.0, 1.0 / 40320.0, -1.0 / 3628800.0,
+                                                  1.0 / 479001600.0, -1.0 / 87178291200.0, 1.0 / 20922789888000.0,
+                                                  -1.0 / 6402373705728000.0, 1.0 / 2432902008176640000.0,
+                                                  -1.0 / 1124000727777607680000.0};
+    return polynomial(coefficients, r * r);
+}
+
+/// (−1)ᵏ for an integral k, without a branch.
+inline double parity_sign(double k) { return 1.0 - 2.0 * (k - 2.0 * std::floor(0.5 * k)); }
 
 }  // namespace fast_math_detail
 
 /// sin²(x) for |x| < 2²⁰·π. sin² has period π, so no quadrant bookkeeping is needed.
 inline double sin_squared(double x) {
-    const double sine = fast_math_detail::reduced_sine(x).sine_r;
+    const double sine = fast_math_detail::sine_series(fast_math_detail::reduce_by_pi(x).r);
     return sine * sine;
 }
 
 /// sin(x) for |x| < 2²⁰·π: sin(kπ + r) = (−1)ᵏ sin r.
 inline double sine(double x) {
-    const auto [sine_r, k] = fast_math_detail::reduced_sine(x);
-    const double odd = k - 2.0 * std::floor(0.5 * k);  // 0 or 1
-    return (1.0 - 2.0 * odd) * sine_r;
+    const auto [r, k] = fast_math_detail::reduce_by_pi(x);
+    return fast_math_detail::parity_sign(k) * fast_math_detail::sine_series(r);
+}
+
+/// sin(x) and cos(x) for |x| < 2²⁰·π from one reduction: cos(kπ + r) = (−1)ᵏ cos r.
+struct SineCosine {
+    double sine, cosine;
+};
+inline SineCosine sine_cosine(double x) {
+    const auto [r, k] = fast_math_detail::reduce_by_pi(x);
+    const double sign = fast_math_detail::parity_sign(k);
+    return {sign * fast_math_detail::sine_series(r), sign * fast_math_detail::cosine_series(r)};
 }
 
 }  // namespace petroscope

@@ -17,6 +17,16 @@
 
 namespace petroscope {
 
+/// How white light is sampled over the spectrum.
+enum class SpectrumSampling {
+    /// The crystal's modes are solved at a few wavelengths (spectral nodes) and interpolated to the others,
+    /// where the interference is evaluated exactly; near an optic axis, where the modes change too fast with
+    /// wavelength, every wavelength is solved (docs/theory.md, "White light from spectral nodes").
+    interpolated,
+    /// The modes are solved at every wavelength (the reference the interpolation is tested against).
+    exact,
+};
+
 struct ConoscopeSettings {
     int size_px = 512;                  // square image, 64 … 4096
     double numerical_aperture = 0.85;   // of the objective, in air: r/r_max = sin θ_air / NA (Abbe sine condition)
@@ -28,6 +38,8 @@ struct ConoscopeSettings {
     double stage_deg = 0.0;             // stage rotation, counter-clockwise seen from the observer
     Eigen::Matrix3d crystal_axes = Eigen::Matrix3d::Identity();  // indicatrix X, Y, Z (columns) at stage 0
     std::vector<double> wavelengths_nm{589.3};
+    /// White light in an immersed slab: how the spectrum is sampled (the mounting's stack solves every wavelength).
+    SpectrumSampling spectrum = SpectrumSampling::interpolated;
     /// An accessory plate in the tube, crossed at normal incidence by the light of every image point (the same
     /// retardation over the figure). With a plate every sample goes through the reference path (slower).
     std::optional<AccessoryPlate> plate;

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <functional>
 #include <string>
 #include <vector>
@@ -42,6 +43,7 @@ public:
 
 private:
     std::vector<Eigen::Vector3d> weights_;
+    std::array<std::vector<double>, 3> channel_weights_;  // the same per channel, for a vectorised sum
     Eigen::Vector3d white_xyz_ = Eigen::Vector3d::Zero();
 };
 

@@ -1,0 +1,110 @@
+// The conoscope evaluator's white light from spectral nodes (spectral_nodes.hpp).
+#include "conoscope_evaluator.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace petroscope::detail {
+namespace {
+
+// The modes are singular where the wave normal meets a binormal. |N̂ × b| must exceed this many times the
+// distance N̂ × b moves over the spectrum: the singularity then lies outside the Bernstein ellipse of
+// parameter ρ ≈ 2·2, where the degree-7 interpolant converges like ρ⁻⁷ (Trefethen, Approximation Theory and
+// Approximation Practice, 2013, Theorem 8.2), and no feature narrower than the node spacing can hide from
+// the tail estimate below, which decides.
+constexpr double kSmoothness = 2.0;
+// Interpolation errors allowed (SpectralNodes::tail): 1e-3 rad in δ and 1e-4 in each mode's field (the
+// incident field is 1) change a transmission by at most about 1e-3, below ΔE₀₀ ≈ 0.1 where the colour is
+// most sensitive; beyond them every wavelength is solved (a thick slab of a strongly dispersive crystal).
+constexpr double kPhaseTolerance = 1e-3;
+constexpr double kFieldTolerance = 1e-4;
+
+}  // namespace
+
+bool ConoscopeEvaluator::smooth_over_spectrum(const KernelScratch& scratch) const {
+    // A uniaxial crystal's two binormals are the optic axis (b₂ = ±b₁).
+    const int binormals = node_samples_->uniaxial ? 1 : 2;
+    constexpr std::size_t middle = kSpectralNodes / 2;
+    for (int side = 0; side < 2; ++side) {
+        const double direction = side == 0 ? 1.0 : -1.0;
+        const double xi_x = direction * scratch.xi_x[0], xi_y = direction * scratch.xi_y[0];
+        const double* q = scratch.q[side][0].data();  // N = (ξ, q) of the fast sheet: near a binormal both sheets agree
+        for (int binormal = 0; binormal < binormals; ++binormal) {
+            const auto& axis = binormal == 0 ? node_samples_->binormal_1 : node_samples_->binormal_2;
+            const double *b_x = axis[0].data(), *b_y = axis[1].data(), *b_z = axis[2].data();
+            // c = N̂ × b at each node.
+            std::array<double, kSpectralNodes> c_x{}, c_y{}, c_z{};
+            double closest_squared = 1.0;
+#pragma omp simd reduction(min : closest_squared)
+            for (std::size_t j = 0; j < kSpectralNodes; ++j) {
+                const double inverse_length = 1.0 / std::sqrt(xi_x * xi_x + xi_y * xi_y + q[j] * q[j]);
+                c_x[j] = (xi_y * b_z[j] - q[j] * b_y[j]) * inverse_length;
+                c_y[j] = (q[j] * b_x[j] - xi_x * b_z[j]) * inverse_length;
+                c_z[j] = (xi_x * b_y[j] - xi_y * b_x[j]) * inverse_length;
+                closest_squared = std::min(closest_squared, c_x[j] * c_x[j] + c_y[j] * c_y[j] + c_z[j] * c_z[j]);
+            }
+            double motion_squared = 0.0;
+#pragma omp simd reduction(max : motion_squared)
+            for (std::size_t j = 0; j < kSpectralNodes; ++j) {
+                const double d_x = c_x[j] - c_x[middle], d_y = c_y[j] - c_y[middle], d_z = c_z[j] - c_z[middle];
+                motion_squared = std::max(motion_squared, d_x * d_x + d_y * d_y + d_z * d_z);
+            }
+            if (!(closest_squared > kSmoothness * kSmoothness * motion_squared)) return false;
+        }
+    }
+    return true;
+}
+
+bool ConoscopeEvaluator::interpolated_pair(const KernelScratch& scratch, double* out_plus, double* out_minus) const {
+    std::array<std::array<NodeValues, 4>, 2> side_fields;
+    std::array<NodeValues, 2> side_phase;
+    for (int side = 0; side < 2; ++side) {
+        for (std::size_t j = 0; j < kSpectralNodes; ++j) {
+            for (std::size_t c = 0; c < 4; ++c) side_fields[side][c][j] = scratch.mode_field[side][c][j];
+            side_phase[side][j] = scratch.phase_difference[side][j];
+        }
+        if (!(nodes_->tail(side_phase[side]) <= kPhaseTolerance)) return false;
+        for (const NodeValues& field : side_fields[side]) {
+            if (!(nodes_->tail(field) <= kFieldTolerance)) return false;
+        }
+    }
+    for (int side = 0; side < 2; ++side) {
+        const std::array<NodeValues, 4>& fields = side_fields[side];
+        const NodeValues& phase = side_phase[side];
+        // This side's ρ̂ and ŝ = ẑ × ρ̂ (conoscope_kernel.hpp: side 1 has ρ̂ times `reversal`).
+        const double sign = side == 0 ? 1.0 : scratch.reversal[0];
+        const double rho_x = sign * scratch.rho_x[0], rho_y = sign * scratch.rho_y[0];
+        const double s_x = -rho_y, s_y = rho_x;
+        double* out = side == 0 ? out_plus : out_minus;
+        if (!plate_jones_lab_.empty()) {
+            // The fields in the lab frame, E = s ŝ + p ρ̂, where the plate's analyzers are.
+            std::array<NodeValues, 4> lab_fields{};
+            for (std::size_t mode = 0; mode < 2; ++mode) {
+                for (std::size_t j = 0; j < kSpectralNodes; ++j) {
+                    lab_fields[mode][j] = fields[mode][j] * s_x + fields[2 + mode][j] * rho_x;
+                    lab_fields[2 + mode][j] = fields[mode][j] * s_y + fields[2 + mode][j] * rho_y;
+                }
+            }
+            PlateAnalyzers analyzers{polars_.analyzer_in ? 1 : 2, {}};
+            for (std::size_t k = 0; k < 2; ++k) {
+                for (std::size_t c = 0; c < 4; ++c) analyzers.lab[k][c] = spectral_samples_.plate_analyzer[k][c].data();
+            }
+            interpolated_transmission(*nodes_, lab_fields, phase, analyzers, out);
+        } else if (polars_.analyzer_in) {
+            // The amplitude of each mode behind the analyzer: a·(s ŝ + p ρ̂).
+            const double a_s = polars_.analyzer.x() * s_x + polars_.analyzer.y() * s_y;
+            const double a_p = polars_.analyzer.x() * rho_x + polars_.analyzer.y() * rho_y;
+            std::array<NodeValues, 4> amplitudes{};
+            for (std::size_t j = 0; j < kSpectralNodes; ++j) {
+                amplitudes[0][j] = a_s * fields[0][j] + a_p * fields[2][j];
+                amplitudes[1][j] = a_s * fields[1][j] + a_p * fields[3][j];
+            }
+            interpolated_transmission(*nodes_, amplitudes, 1, phase, out);
+        } else {
+            interpolated_transmission(*nodes_, fields, 2, phase, out);
+        }
+    }
+    return true;
+}
+
+}  // namespace petroscope::detail

@@ -1,0 +1,125 @@
+#include "spectral_nodes.hpp"
+
+#include "conoscope_kernel.hpp"
+#include "interference.hpp"
+
+#include "petroscope/core/fast_math.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace petroscope::detail {
+
+SpectralNodes::SpectralNodes(const std::vector<double>& grid_nm)
+    : grid_size_(grid_nm.size()), padded_size_(padded_length(grid_nm.size())) {
+    const auto [shortest, longest] = std::minmax_element(grid_nm.begin(), grid_nm.end());
+    const double sigma_low = 1.0 / *longest, sigma_high = 1.0 / *shortest;
+    const double middle = 0.5 * (sigma_high + sigma_low), half = 0.5 * (sigma_high - sigma_low);
+    // Chebyshev–Lobatto points x_j = cos(jπ/(n − 1)) with barycentric weights (−1)ʲ, halved at both ends.
+    constexpr int n = static_cast<int>(kSpectralNodes);
+    std::array<double, kSpectralNodes> x{}, weight{};
+    for (int j = 0; j < n; ++j) {
+        x[j] = std::cos(std::numbers::pi * j / (n - 1));
+        weight[j] = (j % 2 == 0 ? 1.0 : -1.0) * (j == 0 || j == n - 1 ? 0.5 : 1.0);
+        nodes_nm_[j] = 1.0 / (middle + half * x[j]);
+    }
+    // Chebyshev coefficients from values at the Lobatto points (Trefethen 2013, eq. 3.11 with the DCT-I):
+    // c_k = (2/(n − 1))·Σ″_j f_j cos(πjk/(n − 1)), Σ″ halving the first and last terms, c_{n−1} halved too.
+    for (int row = 0; row < 2; ++row) {
+        const int k = n - 2 + row;
+        for (int j = 0; j < n; ++j) {
+            const double ends = (j == 0 || j == n - 1 ? 0.5 : 1.0) * (k == n - 1 ? 0.5 : 1.0);
+            tail_rows_[row][j] = 2.0 / (n - 1) * ends * std::cos(std::numbers::pi * j * k / (n - 1));
+        }
+    }
+    basis_.assign(kSpectralNodes * padded_size_, 0.0);
+    for (std::size_t w = 0; w < padded_size_; ++w) {
+        const double at = (1.0 / grid_nm[std::min(w, grid_size_ - 1)] - middle) / half;
+        std::array<double, kSpectralNodes> term{};
+        double sum = 0.0;
+        int coinciding = -1;
+        for (int j = 0; j < n; ++j) {
+            if (at == x[j]) coinciding = j;
+            term[j] = weight[j] / (at - x[j]);
+            sum += term[j];
+        }
+        for (int j = 0; j < n; ++j) {
+            const double value = coinciding >= 0 ? (j == coinciding ? 1.0 : 0.0) : term[j] / sum;
+            basis_[static_cast<std::size_t>(j) * padded_size_ + w] = value;
+        }
+    }
+}
+
+double SpectralNodes::tail(const std::array<double, kSpectralNodes>& values) const {
+    double last_but_one = 0.0, last = 0.0;
+    const double *row_6 = tail_rows_[0].data(), *row_7 = tail_rows_[1].data(), *value = values.data();
+#pragma omp simd reduction(+ : last_but_one, last)
+    for (std::size_t j = 0; j < kSpectralNodes; ++j) {
+        last_but_one += row_6[j] * value[j];
+        last += row_7[j] * value[j];
+    }
+    return std::abs(last_but_one) + std::abs(last);
+}
+
+namespace {
+
+// Interpolates δ and `Quantities` (2 or 4) node quantities to every grid wavelength, in vector lanes over
+// the wavelengths (the node values are the same in every lane), and stores evaluate(w, v₀, v₁, v₂, v₃, δ).
+// The quantities are scalars: GCC 12 does not vectorise a loop whose body holds a local array.
+template <int Quantities, typename Evaluate>
+void over_grid(const SpectralNodes& nodes, const std::array<NodeValues, 4>& values, const NodeValues& phase, double* out,
+               const Evaluate& evaluate) {
+    const double* basis = nodes.basis();
+    const std::size_t stride = nodes.padded_grid_size();
+    const int count = static_cast<int>(nodes.grid_size());
+    const NodeValues &a0 = values[0], &a1 = values[1], &a2 = values[2], &a3 = values[3];
+#pragma omp simd
+    for (int w = 0; w < count; ++w) {
+        double v0 = 0.0, v1 = 0.0, v2 = 0.0, v3 = 0.0, delta = 0.0;
+        for (std::size_t j = 0; j < kSpectralNodes; ++j) {
+            const double b = basis[j * stride + static_cast<std::size_t>(w)];
+            delta += b * phase[j];
+            v0 += b * a0[j];
+            v1 += b * a1[j];
+            if constexpr (Quantities == 4) {
+                v2 += b * a2[j];
+                v3 += b * a3[j];
+            }
+        }
+        out[w] = evaluate(w, v0, v1, v2, v3, delta);
+    }
+}
+
+}  // namespace
+
+void interpolated_transmission(const SpectralNodes& nodes, const std::array<NodeValues, 4>& amplitudes, int pairs,
+                               const NodeValues& phase_difference, double* out) {
+    if (pairs == 1) {
+        over_grid<2>(nodes, amplitudes, phase_difference, out, [](int, double c0, double c1, double, double, double delta) {
+            return pair_intensity(c0, c1, sin_squared(0.5 * delta));
+        });
+    } else {
+        over_grid<4>(nodes, amplitudes, phase_difference, out, [](int, double c0, double c1, double c2, double c3, double delta) {
+            const double sin2 = sin_squared(0.5 * delta);
+            return pair_intensity(c0, c1, sin2) + pair_intensity(c2, c3, sin2);
+        });
+    }
+}
+
+void interpolated_transmission(const SpectralNodes& nodes, const std::array<NodeValues, 4>& lab_fields, const NodeValues& phase_difference,
+                               const PlateAnalyzers& analyzers, double* out) {
+    const auto& b = analyzers.lab;
+    const double *re_x0 = b[0][0], *re_y0 = b[0][1], *im_x0 = b[0][2], *im_y0 = b[0][3];
+    const double *re_x1 = b[1][0], *re_y1 = b[1][1], *im_x1 = b[1][2], *im_y1 = b[1][3];
+    const bool second = analyzers.count == 2;
+    // lab_fields: x of the fast and slow mode, then y of the fast and slow mode.
+    over_grid<4>(nodes, lab_fields, phase_difference, out, [&](int w, double x0, double x1, double y0, double y1, double delta) {
+        const SineCosine phase = sine_cosine(delta);
+        const double first = complex_analyzer_intensity(re_x0[w], re_y0[w], im_x0[w], im_y0[w], x0, y0, x1, y1, phase.cosine, phase.sine);
+        return second ? first + complex_analyzer_intensity(re_x1[w], re_y1[w], im_x1[w], im_y1[w], x0, y0, x1, y1, phase.cosine, phase.sine)
+                      : first;
+    });
+}
+
+}  // namespace petroscope::detail

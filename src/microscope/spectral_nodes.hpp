@@ -1,0 +1,65 @@
+#pragma once
+// White light from a few wavelengths. Away from the optic axes, everything the conoscope computes for
+// one image point is a smooth function of the wavenumber σ = 1/λ: the modes' fields and their phase
+// difference δ. Only cos δ oscillates, up to thousands of times over the visible range in a thick
+// slab. So the modes are solved at a few nodes, the fields and δ are interpolated to every wavelength of
+// the grid, and the interference is evaluated there (docs/theory.md, "White light from spectral nodes").
+#include <array>
+#include <cstddef>
+#include <vector>
+
+namespace petroscope::detail {
+
+/// Nodes per figure: the modes are solved at 8 wavelengths instead of every wavelength of the grid.
+constexpr std::size_t kSpectralNodes = 8;
+
+/// Polynomial interpolation in σ from Chebyshev–Lobatto nodes spanning the grid to every grid
+/// wavelength, through the barycentric formula (Berrut & Trefethen 2004, SIAM Review 46, 501, eqs. 4.2
+/// and 5.3): for a function analytic near [σ_min, σ_max] the error falls geometrically with the node count.
+class SpectralNodes {
+public:
+    /// `grid_nm`: at least 2·kSpectralNodes distinct wavelengths.
+    explicit SpectralNodes(const std::vector<double>& grid_nm);
+
+    const std::array<double, kSpectralNodes>& wavelengths_nm() const { return nodes_nm_; }
+    std::size_t grid_size() const { return grid_size_; }
+    /// The stride of the basis: grid_size() rounded up to whole vectors.
+    std::size_t padded_grid_size() const { return padded_size_; }
+    /// Basis function j at grid wavelength w: basis()[j·padded_grid_size() + w].
+    const double* basis() const { return basis_.data(); }
+
+    /// An estimate of the interpolation error of a quantity from its node values: |c₆| + |c₇|, its last two
+    /// Chebyshev coefficients. For a function analytic in a Bernstein ellipse of parameter ρ they fall like
+    /// ρ⁻ᵏ and the error of the interpolant is of the order of the first one left out, |c₈| < |c₇|/ρ
+    /// (Trefethen, Approximation Theory and Approximation Practice, 2013, Theorems 4.2 and 8.2).
+    double tail(const std::array<double, kSpectralNodes>& values) const;
+
+private:
+    std::array<double, kSpectralNodes> nodes_nm_{};
+    std::array<std::array<double, kSpectralNodes>, 2> tail_rows_{};  // c₆ and c₇ from the node values
+    std::size_t grid_size_ = 0, padded_size_ = 0;
+    std::vector<double> basis_;
+};
+
+/// Values of one quantity at the nodes.
+using NodeValues = std::array<double, kSpectralNodes>;
+
+/// Transmission at every grid wavelength behind real analyzers (no plate): `pairs` amplitude pairs (c₀, c₁)
+/// per analyzed component (one behind the analyzer, two without it), interpolated with δ, each giving
+/// |c₀e^{iφ₀} + c₁e^{iφ₁}|² (interference.hpp). amplitudes[2k], amplitudes[2k + 1]: pair k.
+void interpolated_transmission(const SpectralNodes& nodes, const std::array<NodeValues, 4>& amplitudes, int pairs,
+                               const NodeValues& phase_difference, double* out);
+
+/// The analyzers after an accessory plate at every grid wavelength: SampleCrystal::plate_analyzer, complex
+/// lab-frame vectors b, one or two of them.
+struct PlateAnalyzers {
+    int count = 1;
+    std::array<std::array<const double*, 4>, 2> lab{};  // [k]: Re b_x, Re b_y, Im b_x, Im b_y
+};
+
+/// Transmission at every grid wavelength through a plate: the modes' lab-frame fields (x of the fast and
+/// slow mode, y of the fast and slow mode) and δ interpolated, then |bᵀE|² summed over the analyzers.
+void interpolated_transmission(const SpectralNodes& nodes, const std::array<NodeValues, 4>& lab_fields,
+                               const NodeValues& phase_difference, const PlateAnalyzers& analyzers, double* out);
+
+}  // namespace petroscope::detail

@@ -1,0 +1,182 @@
+// White light from spectral nodes (issue 22): the figure with the modes solved at 8 wavelengths and
+// interpolated to the others against the figure with every wavelength solved, as colour differences
+// ΔE₀₀ per pixel, for thin and thick slabs, uniaxial and biaxial crystals with dispersion of the optic
+// axes, plates, and polars in any position.
+#include "conoscope_evaluator.hpp"
+#include "conoscope_fixtures.hpp"
+
+#include "petroscope/spectral/color.hpp"
+#include "petroscope/spectral/wavelength_grid.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+namespace petroscope {
+namespace {
+
+struct Difference {
+    double worst_delta_e = 0.0;
+    int pixels = 0;
+    double interpolated_fraction = 0.0;  // of the image points, those whose spectrum came from the nodes
+};
+
+/// The share of the figure's points that the evaluator interpolates.
+double interpolated_fraction(const ConoscopeSettings& settings, const Mineral& mineral) {
+    const detail::ConoscopeEvaluator evaluator(settings, testing::indices_of(mineral));
+    detail::SpectralScratch scratch;
+    std::vector<double> plus(settings.wavelengths_nm.size()), minus(plus.size());
+    int points = 0, interpolated = 0;
+    for (int row = 0; row < settings.size_px / 2; ++row) {
+        for (int column = 0; column < settings.size_px; ++column) {
+            const Eigen::Vector2d xi = conoscope_tangential_wavevector(settings, column, row);
+            if (xi.norm() > settings.numerical_aperture) continue;
+            evaluator.spectral_pair(xi, scratch, false, plus.data(), minus.data());
+            points += 2;
+            interpolated += scratch.interpolated ? 2 : 0;
+        }
+    }
+    return static_cast<double>(interpolated) / points;
+}
+
+/// The largest ΔE₀₀ over the figure between the interpolated and the exact spectrum, in D65 light with
+/// the 81 wavelengths of 380 … 780 nm in steps of 5 nm (the CLI's default).
+Difference interpolation_difference(ConoscopeSettings settings, const Mineral& mineral) {
+    settings.wavelengths_nm = WavelengthGrid{380.0, 780.0, 5.0}.wavelengths_nm();
+    const SpectralIntegrator integrator(settings.wavelengths_nm, load_cie_1931_observer(), load_light_source("D65"));
+    settings.spectrum = SpectrumSampling::exact;
+    const Image exact = render_conoscope(settings, testing::indices_of(mineral), &integrator);
+    settings.spectrum = SpectrumSampling::interpolated;
+    const Image interpolated = render_conoscope(settings, testing::indices_of(mineral), &integrator);
+    Difference difference;
+    for (int row = 0; row < settings.size_px; ++row) {
+        for (int column = 0; column < settings.size_px; ++column) {
+            if (conoscope_tangential_wavevector(settings, column, row).norm() > settings.numerical_aperture) continue;
+            const auto lab = [&](const Image& image) {
+                const Eigen::Vector3d xyz(image.at(column, row, 0), image.at(column, row, 1), image.at(column, row, 2));
+                return xyz_to_lab(xyz, integrator.white_xyz());
+            };
+            difference.worst_delta_e = std::max(difference.worst_delta_e, delta_e_2000(lab(exact), lab(interpolated)));
+            ++difference.pixels;
+        }
+    }
+    difference.interpolated_fraction = interpolated_fraction(settings, mineral);
+    return difference;
+}
+
+ConoscopeSettings tilted(const Mineral& mineral, Cut cut, double tilt_deg, double thickness_um) {
+    ConoscopeSettings settings = testing::figure_settings(mineral, cut, thickness_um, 128);
+    settings.crystal_axes = cut_orientation(cut, mineral.optical_class, mineral.principal_n(mineral.reference_wavelength_nm), 30.0, tilt_deg);
+    return settings;
+}
+
+void expect_close_to_exact(const ConoscopeSettings& settings, const Mineral& mineral, const std::string& label, double least_interpolated) {
+    const Difference difference = interpolation_difference(settings, mineral);
+    std::printf("%s: max dE00 %.2g over %d px, %.1f%% interpolated\n", label.c_str(), difference.worst_delta_e, difference.pixels,
+                100.0 * difference.interpolated_fraction);
+    EXPECT_LE(difference.worst_delta_e, 0.3) << label;
+    EXPECT_GE(difference.interpolated_fraction, least_interpolated) << label;
+}
+
+std::string thickness_label(const char* name, double thickness_um) { return std::string(name) + ' ' + std::to_string(static_cast<int>(thickness_um)) + " um"; }
+
+TEST(ConoscopeSpectrum, UniaxialFromThinToThickMatchesEveryWavelengthSolved) {
+    const MineralCatalog& minerals = testing::repository_minerals();
+    for (const char* name : {"calcite", "quartz"}) {
+        for (const double thickness_um : {30.0, 300.0, 5000.0}) {
+            for (const double tilt_deg : {0.0, 25.0}) {
+                const Mineral& mineral = minerals.find(name);
+                // A 5 mm calcite slab's phase (up to 2e4 rad) is interpolated to 1e-3 rad only nearer the optic axis.
+                const double least = thickness_um > 1000.0 && std::string(name) == "calcite" ? 0.4 : 0.95;
+                expect_close_to_exact(tilted(mineral, Cut::optic_axis, tilt_deg, thickness_um), mineral,
+                                      thickness_label(name, thickness_um) + ", tilt " + std::to_string(static_cast<int>(tilt_deg)), least);
+            }
+        }
+    }
+}
+
+TEST(ConoscopeSpectrum, BiaxialWithDispersedOpticAxesMatchesEveryWavelengthSolved) {
+    const MineralCatalog& minerals = testing::repository_minerals();
+    for (const char* name : {"muscovite", "augite", "aragonite", "sillimanite"}) {
+        for (const double thickness_um : {30.0, 5000.0}) {
+            for (const Cut cut : {Cut::acute_bisectrix, Cut::optic_axis}) {
+                const Mineral& mineral = minerals.find(name);
+                expect_close_to_exact(tilted(mineral, cut, 10.0, thickness_um), mineral,
+                                      thickness_label(name, thickness_um) + ", " + std::string(cut_name(cut)), 0.95);
+            }
+        }
+    }
+}
+
+// Rutile's indices have a pole at 0.29 µm, KTP's at 0.21 µm and an infrared term: their fields and phases
+// need more than 8 nodes over much of the figure, which then solves every wavelength.
+TEST(ConoscopeSpectrum, StronglyDispersiveCrystalsFallBackToEveryWavelength) {
+    const MineralCatalog& minerals = testing::repository_minerals();
+    for (const char* name : {"rutile", "ktp"}) {
+        for (const double thickness_um : {30.0, 5000.0}) {
+            const Mineral& mineral = minerals.find(name);
+            const Cut cut = mineral.optical_class == OpticalClass::biaxial ? Cut::acute_bisectrix : Cut::optic_axis;
+            expect_close_to_exact(tilted(mineral, cut, 25.0, thickness_um), mineral, thickness_label(name, thickness_um), 0.0);
+        }
+    }
+}
+
+TEST(ConoscopeSpectrum, PlatesAndPolarsInAnyPositionMatchEveryWavelengthSolved) {
+    const MineralCatalog& minerals = testing::repository_minerals();
+    struct PlateCase {
+        const char* mineral;
+        double thickness_um;
+        PlateKind plate;
+        const char* plate_mineral;
+        double polarizer_deg, analyzer_deg;
+        bool analyzer_in;
+    };
+    for (const PlateCase& each : {PlateCase{"quartz", 300.0, PlateKind::gypsum, "gypsum", 0.0, 90.0, true},
+                                  PlateCase{"calcite", 30.0, PlateKind::wedge, "quartz", 17.0, 100.0, true},
+                                  PlateCase{"muscovite", 30.0, PlateKind::mica, "muscovite", 30.0, 0.0, false},
+                                  PlateCase{"augite", 5000.0, PlateKind::gypsum, "gypsum", 45.0, 135.0, true}}) {
+        const Mineral& mineral = minerals.find(each.mineral);
+        const Cut cut = mineral.optical_class == OpticalClass::biaxial ? Cut::acute_bisectrix : Cut::optic_axis;
+        ConoscopeSettings settings = tilted(mineral, cut, 10.0, each.thickness_um);
+        settings.plate = make_accessory_plate(each.plate, minerals.find(each.plate_mineral), 45.0, 0.5);
+        settings.polarizer_deg = each.polarizer_deg;
+        settings.analyzer_deg = each.analyzer_deg;
+        settings.analyzer_in = each.analyzer_in;
+        expect_close_to_exact(settings, mineral, thickness_label(each.mineral, each.thickness_um) + " with a plate", 0.95);
+        settings.plate.reset();
+        expect_close_to_exact(settings, mineral, thickness_label(each.mineral, each.thickness_um) + " without a plate", 0.95);
+    }
+}
+
+// The interpolation itself: exact for polynomials of degree 7 in σ, with a tail estimate (the Chebyshev
+// coefficients of degrees 6 and 7) that is zero for degree 5 and large for a pole near the visible range.
+TEST(ConoscopeSpectrum, NodesInterpolatePolynomialsInWavenumberExactly) {
+    const std::vector<double> grid = WavelengthGrid{380.0, 780.0, 5.0}.wavelengths_nm();
+    const detail::SpectralNodes nodes(grid);
+    const auto polynomial = [](double wavelength_nm) {
+        const double x = 1000.0 / wavelength_nm;  // σ in µm⁻¹
+        return 1.5 + x * (0.3 + x * (-0.2 + x * (0.05 + x * x * x * x * 0.001)));
+    };
+    const auto quintic = [](double wavelength_nm) { return std::pow(1000.0 / wavelength_nm - 1.9, 5); };
+    const auto pole = [](double wavelength_nm) { return 1.0 / (wavelength_nm / 1000.0 - 0.3); };
+    detail::NodeValues polynomial_values{}, quintic_values{}, pole_values{};
+    for (std::size_t j = 0; j < detail::kSpectralNodes; ++j) {
+        polynomial_values[j] = polynomial(nodes.wavelengths_nm()[j]);
+        quintic_values[j] = quintic(nodes.wavelengths_nm()[j]);
+        pole_values[j] = pole(nodes.wavelengths_nm()[j]);
+    }
+    double worst = 0.0;
+    for (std::size_t w = 0; w < grid.size(); ++w) {
+        double value = 0.0;
+        for (std::size_t j = 0; j < detail::kSpectralNodes; ++j) value += nodes.basis()[j * nodes.padded_grid_size() + w] * polynomial_values[j];
+        worst = std::max(worst, std::abs(value - polynomial(grid[w])));
+    }
+    EXPECT_LT(worst, 1e-12);
+    EXPECT_LT(nodes.tail(quintic_values), 1e-12);
+    EXPECT_GT(nodes.tail(pole_values), 1e-3);
+    EXPECT_NEAR(nodes.wavelengths_nm().front(), 380.0, 1e-9);
+    EXPECT_NEAR(nodes.wavelengths_nm().back(), 780.0, 1e-9);
+}
+
+}  // namespace
+}  // namespace petroscope
