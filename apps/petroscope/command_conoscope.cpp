@@ -82,11 +82,11 @@ nlohmann::json conoscope_sidecar(const ConoscopeRequest& request, const Conoscop
         {"mounting", settings.mounting ? mounting_json(*settings.mounting) : nlohmann::json(nullptr)},
         {"plate", plate_json(settings.plate)},
         {"size_px", settings.size_px},
-        {"spectrum", settings.mounting || plan.light.monochromatic() ? "every wavelength solved"
-                     : settings.spectrum == SpectrumSampling::exact
-                         ? "every wavelength solved (--exact-spectrum)"
-                         : "modes solved at 8 wavelengths and interpolated to the others, every wavelength solved near the optic axes "
-                           "(docs/conoscope.md, White light from spectral nodes)"},
+        {"spectrum", interpolates_spectrum(settings)
+                         ? "modes solved at " + std::to_string(kSpectralNodeCount) +
+                               " wavelengths and interpolated to the others; every wavelength solved near the optic axes and where "
+                               "the interpolation's error estimate is too large (docs/conoscope.md)"
+                         : settings.spectrum == SpectrumSampling::exact ? "every wavelength solved (--exact-spectrum)" : "every wavelength solved"},
         {"exposure", request.light.exposure},
         {"model", settings.exact ? "exact coherent 4x4 transfer matrix (Berreman) through the whole section, per image point"
                   : settings.mounting ? "single-pass Jones through the whole section (every layer's exact waves, Fresnel at every interface), per image point"
@@ -146,7 +146,7 @@ void ConoscopeOptions::add_options(CLI::App* command) {
         ->excludes(surround);
     command->add_flag("--exact-spectrum", exact_spectrum_,
                       "White light: solve the crystal's modes at every wavelength instead of at 8 and interpolating\n"
-                      "(3 to 5 times slower; the reference the default is tested against, docs/conoscope.md)");
+                      "(3 to 6 times slower; the reference the default is tested against, docs/conoscope.md)");
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include "petroscope/core/error.hpp"
 #include "petroscope/core/text.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <functional>
@@ -35,6 +36,14 @@ void ConoscopeSettings::validate() const {
     }
 }
 
+bool interpolates_spectrum(const ConoscopeSettings& settings) {
+    std::vector<double> distinct = settings.wavelengths_nm;
+    std::sort(distinct.begin(), distinct.end());
+    distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+    return settings.spectrum == SpectrumSampling::interpolated && !settings.mounting &&
+           distinct.size() >= 2 * static_cast<std::size_t>(kSpectralNodeCount);
+}
+
 Eigen::Vector2d conoscope_tangential_wavevector(const ConoscopeSettings& settings, int column, int row) {
     const double half = 0.5 * settings.size_px;
     const double x = (column + 0.5 - half) / half;
@@ -57,6 +66,7 @@ ConoscopeTerms::ConoscopeTerms(const ConoscopeSettings& settings, const Principa
     : settings_(settings) {
     settings_.validate();
     if (settings_.plate || settings_.mounting) throw InputError("interference terms are defined for a slab without a plate or mounting only");
+    settings_.spectrum = SpectrumSampling::exact;  // the terms are solved at every wavelength
     wavelength_count_ = settings_.wavelengths_nm.size();
     evaluator_ = std::make_unique<detail::ConoscopeEvaluator>(settings_, principal_n);
 }

@@ -64,10 +64,10 @@ ConoscopeEvaluator::ConoscopeEvaluator(const ConoscopeSettings& settings, const 
       k0_per_um_(k0_thickness_for(settings.wavelengths_nm, 1.0)),
       spectral_samples_(samples_of(frames_, k0_thickness_, settings.surround_n, 1)) {
     if (frames_.size() == 1) monochromatic_samples_ = samples_of(frames_, k0_thickness_, settings.surround_n, kMonochromaticBatch);
-    if (settings.spectrum == SpectrumSampling::interpolated && frames_.size() >= 2 * kSpectralNodes) {
+    if (interpolates_spectrum(settings)) {
         nodes_.emplace(settings.wavelengths_nm);
-        node_frames_ = frames_for(settings, principal_n, nodes_->wavelengths_nm());
-        node_samples_ = samples_of(node_frames_, k0_thickness_for(nodes_->wavelengths_nm(), settings.thickness_um), settings.surround_n, 1);
+        const std::vector<BinormalFrame> node_frames = frames_for(settings, principal_n, nodes_->wavelengths_nm());
+        node_samples_ = samples_of(node_frames, k0_thickness_for(nodes_->wavelengths_nm(), settings.thickness_um), settings.surround_n, 1);
     }
     if (settings.plate) {
         for (const double wavelength_nm : settings.wavelengths_nm) plate_jones_lab_.push_back(plate_jones_lab(*settings.plate, wavelength_nm, false));
@@ -78,7 +78,9 @@ ConoscopeEvaluator::ConoscopeEvaluator(const ConoscopeSettings& settings, const 
 
 void ConoscopeEvaluator::spectral_pair(const Eigen::Vector2d& xi, SpectralScratch& scratch, bool continues_row, double* out_plus,
                                        double* out_minus) const {
-    scratch.interpolated = false;
+    // The every-wavelength roots can start the iterations only if they are the previous point's.
+    const bool every_wavelength_continues = continues_row && scratch.every_wavelength_current;
+    scratch.nodes_usable = scratch.every_wavelength_current = scratch.interpolated = false;
     if (nodes_) {
         KernelScratch& at_nodes = scratch.nodes;
         if (at_nodes.failed.size() != node_samples_->padded_size()) {
@@ -89,20 +91,27 @@ void ConoscopeEvaluator::spectral_pair(const Eigen::Vector2d& xi, SpectralScratc
         const bool warm = continues_row && at_nodes.warm_ready;
         bool any_failed = run_kernel(*node_samples_, polars_, at_nodes, warm, KernelOutput::fields);
         if (any_failed && warm) any_failed = run_kernel(*node_samples_, polars_, at_nodes, false, KernelOutput::fields);
-        scratch.interpolated = !any_failed && smooth_over_spectrum(at_nodes) && interpolated_pair(at_nodes, out_plus, out_minus);
+        scratch.nodes_usable = !any_failed && smooth_over_spectrum(at_nodes);
+        scratch.interpolated = scratch.nodes_usable && interpolated_pair(at_nodes, out_plus, out_minus);
     }
-    if (!scratch.interpolated) exact_pair(xi, scratch.every_wavelength, continues_row, out_plus, out_minus);
+    if (scratch.interpolated) return;
+    exact_pair(xi, scratch.every_wavelength, every_wavelength_continues, out_plus, out_minus);
+    scratch.every_wavelength_current = true;
 }
 
 void ConoscopeEvaluator::spectral_pair_same_modes(const Eigen::Vector2d& xi, SpectralScratch& scratch, double* out_plus, double* out_minus) const {
-    if (scratch.interpolated) {
-        // The modes are those of every evaluator of the set; the fields depend on the polarizer, and where
-        // these cannot be interpolated every wavelength is solved after all.
+    // The modes are those of every evaluator of the set. The fields depend on the polarizer, so whether they
+    // can be interpolated is decided here again, as spectral_pair of this evaluator would.
+    if (scratch.nodes_usable) {
         retransmit(*node_samples_, polars_, scratch.nodes, KernelOutput::fields);
-        if (!interpolated_pair(scratch.nodes, out_plus, out_minus)) exact_pair(xi, scratch.every_wavelength, false, out_plus, out_minus);
-    } else {
-        collect_pair(xi, scratch.every_wavelength, retransmit(spectral_samples_, polars_, scratch.every_wavelength), out_plus, out_minus);
+        if (interpolated_pair(scratch.nodes, out_plus, out_minus)) return;
     }
+    if (scratch.every_wavelength_current) {
+        collect_pair(xi, scratch.every_wavelength, retransmit(spectral_samples_, polars_, scratch.every_wavelength), out_plus, out_minus);
+        return;
+    }
+    exact_pair(xi, scratch.every_wavelength, false, out_plus, out_minus);
+    scratch.every_wavelength_current = true;
 }
 
 void ConoscopeEvaluator::exact_pair(const Eigen::Vector2d& xi, KernelScratch& scratch, bool continues_row, double* out_plus,

@@ -14,9 +14,11 @@ namespace petroscope::detail {
 
 /// A thread's arrays for white light.
 struct SpectralScratch {
-    KernelScratch nodes;             // the modes at the spectral nodes
-    KernelScratch every_wavelength;  // the modes at every wavelength (exact spectrum; points near an optic axis)
-    bool interpolated = false;       // how the last pair was computed
+    KernelScratch nodes;                    // the modes at the spectral nodes
+    KernelScratch every_wavelength;         // the modes at every wavelength (exact spectrum; points the nodes cannot serve)
+    bool nodes_usable = false;              // `nodes` holds this point's modes, smooth enough over the spectrum
+    bool every_wavelength_current = false;  // `every_wavelength` holds this point's modes
+    bool interpolated = false;              // the last spectral_pair interpolated
 };
 
 class ConoscopeEvaluator {
@@ -28,10 +30,6 @@ public:
 
     std::size_t wavelength_count() const { return frames_.size(); }
 
-    /// Whether white light is interpolated from spectral nodes (SpectrumSampling::interpolated and a grid
-    /// of at least 2·kSpectralNodes wavelengths).
-    bool interpolates() const { return nodes_.has_value(); }
-
     /// Transmission at every wavelength for ξ (out_plus) and −ξ (out_minus). `continues_row`: the previous
     /// call with this scratch was for a neighbouring ξ, whose roots can start the iterations. Interpolated
     /// from the spectral nodes unless the settings ask for the exact spectrum or ξ is too near an optic axis
@@ -41,6 +39,7 @@ public:
 
     /// After spectral_pair for the same ξ and scratch by an evaluator of the same crystal, stage, thickness and
     /// wavelengths (only polars and plate differ): this evaluator's transmission, from the modes in `scratch`.
+    /// It interpolates or solves every wavelength exactly where spectral_pair of this evaluator would.
     void spectral_pair_same_modes(const Eigen::Vector2d& xi, SpectralScratch& scratch, double* out_plus, double* out_minus) const;
 
     /// Monochromatic light: transmission for each ξ of `xis` (at most kMonochromaticBatch) and its −ξ.
@@ -90,7 +89,6 @@ private:
     std::vector<Eigen::Matrix2cd> plate_jones_lab_;       // per wavelength; empty without a plate
     // White light from spectral nodes (none: every wavelength solved).
     std::optional<SpectralNodes> nodes_;
-    std::vector<BinormalFrame> node_frames_;
     std::optional<SampleCrystal> node_samples_;
 };
 

@@ -8,15 +8,16 @@ namespace petroscope::detail {
 namespace {
 
 // The modes are singular where the wave normal meets a binormal. |N̂ × b| must exceed this many times the
-// distance N̂ × b moves over the spectrum: the singularity then lies outside the Bernstein ellipse of
-// parameter ρ ≈ 2·2, where the degree-7 interpolant converges like ρ⁻⁷ (Trefethen, Approximation Theory and
-// Approximation Practice, 2013, Theorem 8.2), and no feature narrower than the node spacing can hide from
-// the tail estimate below, which decides.
+// largest distance of N̂ × b over the nodes from its value at a middle node. The singularity then lies about
+// that many half-intervals off the real σ axis, outside the Bernstein ellipse of parameter ρ ≈ 2·2 = 4, in
+// which the degree-7 interpolant converges like ρ⁻⁷ (Trefethen, Approximation Theory and Approximation
+// Practice, 2013, Theorem 8.2); no feature narrower than the node spacing can then hide from the tail
+// estimate below, which decides.
 constexpr double kSmoothness = 2.0;
 // Interpolation errors allowed (SpectralNodes::tail): 1e-3 rad in δ and 1e-4 in each mode's field (the
 // incident field is 1) change a transmission by at most about 1e-3, below ΔE₀₀ ≈ 0.1 where the colour is
 // most sensitive; beyond them every wavelength is solved (a thick slab of a strongly dispersive crystal).
-constexpr double kPhaseTolerance = 1e-3;
+constexpr double kPhaseTolerance_rad = 1e-3;
 constexpr double kFieldTolerance = 1e-4;
 
 }  // namespace
@@ -63,7 +64,7 @@ bool ConoscopeEvaluator::interpolated_pair(const KernelScratch& scratch, double*
             for (std::size_t c = 0; c < 4; ++c) side_fields[side][c][j] = scratch.mode_field[side][c][j];
             side_phase[side][j] = scratch.phase_difference[side][j];
         }
-        if (!(nodes_->tail(side_phase[side]) <= kPhaseTolerance)) return false;
+        if (!(nodes_->tail(side_phase[side]) <= kPhaseTolerance_rad)) return false;
         for (const NodeValues& field : side_fields[side]) {
             if (!(nodes_->tail(field) <= kFieldTolerance)) return false;
         }

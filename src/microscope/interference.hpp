@@ -22,7 +22,8 @@ inline PairTerms pair_terms(double c0, double c1) { return {c0 * c0 + c1 * c1, 2
 
 /// |bᵀ(E₀e^{iφ₀} + E₁e^{iφ₁})|² for real mode fields Eₘ = (uₘ, vₘ) and a complex analyzer b = b_re + i·b_im
 /// (after a plate), both in one orthonormal basis (u, v): with αₘ = b_re·Eₘ, βₘ = b_im·Eₘ and δ = φ₀ − φ₁
-/// it is Σₘ(αₘ² + βₘ²) + 2(α₀α₁ + β₀β₁)cos δ + 2(α₀β₁ − β₀α₁)sin δ.
+/// it is Σₘ(αₘ² + βₘ²) + 2(α₀α₁ + β₀β₁)cos δ + 2(α₀β₁ − β₀α₁)sin δ: |Σₘ (αₘ + iβₘ)e^{iφₘ}|² written out
+/// (the Jones calculus of Yariv & Yeh, Optical Waves in Crystals, 1984, §5.1).
 inline double complex_analyzer_intensity(double re_u, double re_v, double im_u, double im_v, double u0, double v0, double u1,
                                          double v1, double cos_delta, double sin_delta) {
     const double alpha0 = re_u * u0 + re_v * v0, alpha1 = re_u * u1 + re_v * v1;

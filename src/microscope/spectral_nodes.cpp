@@ -14,15 +14,16 @@ namespace petroscope::detail {
 SpectralNodes::SpectralNodes(const std::vector<double>& grid_nm)
     : grid_size_(grid_nm.size()), padded_size_(padded_length(grid_nm.size())) {
     const auto [shortest, longest] = std::minmax_element(grid_nm.begin(), grid_nm.end());
-    const double sigma_low = 1.0 / *longest, sigma_high = 1.0 / *shortest;
-    const double middle = 0.5 * (sigma_high + sigma_low), half = 0.5 * (sigma_high - sigma_low);
+    // The σ interval (nm⁻¹), mapped to x ∈ [−1, 1].
+    const double sigma_low_per_nm = 1.0 / *longest, sigma_high_per_nm = 1.0 / *shortest;
+    const double middle_per_nm = 0.5 * (sigma_high_per_nm + sigma_low_per_nm), half_per_nm = 0.5 * (sigma_high_per_nm - sigma_low_per_nm);
     // Chebyshev–Lobatto points x_j = cos(jπ/(n − 1)) with barycentric weights (−1)ʲ, halved at both ends.
     constexpr int n = static_cast<int>(kSpectralNodes);
     std::array<double, kSpectralNodes> x{}, weight{};
     for (int j = 0; j < n; ++j) {
         x[j] = std::cos(std::numbers::pi * j / (n - 1));
         weight[j] = (j % 2 == 0 ? 1.0 : -1.0) * (j == 0 || j == n - 1 ? 0.5 : 1.0);
-        nodes_nm_[j] = 1.0 / (middle + half * x[j]);
+        nodes_nm_[j] = 1.0 / (middle_per_nm + half_per_nm * x[j]);
     }
     // Chebyshev coefficients from values at the Lobatto points (Trefethen 2013, eq. 3.11 with the DCT-I):
     // c_k = (2/(n − 1))·Σ″_j f_j cos(πjk/(n − 1)), Σ″ halving the first and last terms, c_{n−1} halved too.
@@ -35,7 +36,7 @@ SpectralNodes::SpectralNodes(const std::vector<double>& grid_nm)
     }
     basis_.assign(kSpectralNodes * padded_size_, 0.0);
     for (std::size_t w = 0; w < padded_size_; ++w) {
-        const double at = (1.0 / grid_nm[std::min(w, grid_size_ - 1)] - middle) / half;
+        const double at = (1.0 / grid_nm[std::min(w, grid_size_ - 1)] - middle_per_nm) / half_per_nm;
         std::array<double, kSpectralNodes> term{};
         double sum = 0.0;
         int coinciding = -1;

@@ -4,6 +4,8 @@
 // difference δ. Only cos δ oscillates, up to thousands of times over the visible range in a thick
 // slab. So the modes are solved at a few nodes, the fields and δ are interpolated to every wavelength of
 // the grid, and the interference is evaluated there (docs/theory.md, "White light from spectral nodes").
+#include "petroscope/microscope/conoscope.hpp"
+
 #include <array>
 #include <cstddef>
 #include <vector>
@@ -11,14 +13,14 @@
 namespace petroscope::detail {
 
 /// Nodes per figure: the modes are solved at 8 wavelengths instead of every wavelength of the grid.
-constexpr std::size_t kSpectralNodes = 8;
+constexpr std::size_t kSpectralNodes = kSpectralNodeCount;
 
 /// Polynomial interpolation in σ from Chebyshev–Lobatto nodes spanning the grid to every grid
 /// wavelength, through the barycentric formula (Berrut & Trefethen 2004, SIAM Review 46, 501, eqs. 4.2
 /// and 5.3): for a function analytic near [σ_min, σ_max] the error falls geometrically with the node count.
 class SpectralNodes {
 public:
-    /// `grid_nm`: at least 2·kSpectralNodes distinct wavelengths.
+    /// `grid_nm`: at least 2·kSpectralNodes distinct wavelengths (interpolates_spectrum).
     explicit SpectralNodes(const std::vector<double>& grid_nm);
 
     const std::array<double, kSpectralNodes>& wavelengths_nm() const { return nodes_nm_; }

@@ -228,7 +228,7 @@ TEST_F(Cli, ConoscopeExactSpectrumSolvesEveryWavelengthAndSaysSo) {
     ASSERT_EQ(a.pixels.size(), b.pixels.size());
     double largest = 0.0;
     for (std::size_t i = 0; i < a.pixels.size(); ++i) largest = std::max(largest, static_cast<double>(std::abs(a.pixels[i] - b.pixels[i])));
-    // The library's tests hold the two to ΔE₀₀ ≤ 6e-3 (tests/microscope/test_conoscope_spectrum.cpp).
+    // The library's tests measure at most ΔE₀₀ = 6e-3 between the two (tests/microscope/test_conoscope_spectrum.cpp).
     EXPECT_LT(largest, 1e-4);
     const auto spectrum = [this](const char* name) {
         return nlohmann::json::parse(read_text(out() / (std::string(name) + ".exr.json")))["spectrum"].get<std::string>();

@@ -26,6 +26,8 @@ enum class SpectrumSampling {
     /// The modes are solved at every wavelength (the reference the interpolation is tested against).
     exact,
 };
+/// The wavelengths at which SpectrumSampling::interpolated solves the modes.
+inline constexpr int kSpectralNodeCount = 8;
 
 struct ConoscopeSettings {
     int size_px = 512;                  // square image, 64 … 4096
@@ -41,7 +43,7 @@ struct ConoscopeSettings {
     /// White light in an immersed slab: how the spectrum is sampled (the mounting's stack solves every wavelength).
     SpectrumSampling spectrum = SpectrumSampling::interpolated;
     /// An accessory plate in the tube, crossed at normal incidence by the light of every image point (the same
-    /// retardation over the figure). With a plate every sample goes through the reference path (slower).
+    /// retardation over the figure).
     std::optional<AccessoryPlate> plate;
     /// The whole thin-section stack instead of a slab in balsam half-spaces: air, slide glass, balsam, crystal,
     /// balsam, cover glass, air (microscope/polarizing_microscope.hpp), each image point on its own (slower).
@@ -58,8 +60,13 @@ struct ConoscopeSettings {
 /// N): tangential wavevector ξ = NA·(x, y) in units of k₀ (sin θ_air = NA·r).
 Eigen::Vector2d conoscope_tangential_wavevector(const ConoscopeSettings& settings, int column, int row);
 
+/// Whether a figure of `settings` is interpolated from spectral nodes: SpectrumSampling::interpolated, an
+/// immersed slab (no mounting) and at least 2·kSpectralNodeCount distinct wavelengths.
+bool interpolates_spectrum(const ConoscopeSettings& settings);
+
 /// Transmission spectrum of one image point: intensity after the analyzer relative to the incident
-/// intensity after the polarizer, per wavelength of `settings`. Single pass (no multiple reflections).
+/// intensity after the polarizer, per wavelength of `settings`. Single pass (no multiple reflections);
+/// interpolated from spectral nodes where interpolates_spectrum(settings) says so, as in the figure.
 std::vector<double> conoscope_point_transmission(const ConoscopeSettings& settings,
                                                  const PrincipalIndexFunction& principal_n,
                                                  const Eigen::Vector2d& xi);
