@@ -213,24 +213,28 @@ bool solve_sheet_modes_extended(const BasicBinormalFrame<long double>& frame, co
             long double unused = 0.0L;
             return equation.value(q, &unused);
         };
-        // The interval of q inside the sheet: around the minimum of g on [−2n_max, 2n_max] (golden-section
-        // search, Press et al., Numerical Recipes §10.2; the sheet is star-shaped about the origin, so g is
-        // unimodal along the line).
-        const long double golden = 0.5L * (std::sqrt(5.0L) - 1.0L);
-        long double low = -2.0L * n_max, high = 2.0L * n_max;
-        long double left = high - golden * (high - low), right = low + golden * (high - low);
-        long double g_left = g(left), g_right = g(right);
-        for (int iteration = 0; iteration < 100 && high - low > 1e-12L; ++iteration) {
-            if (g_left < g_right) {
-                high = right; right = left; g_right = g_left;
-                left = high - golden * (high - low); g_left = g(left);
-            } else {
-                low = left; left = right; g_left = g_right;
-                right = low + golden * (high - low); g_right = g(right);
+        // A point of the line inside the sheet; g is unimodal along the line (the sheet is star-shaped about
+        // the origin), so each side of any inside point holds one root. q = 0 is inside when |ξ| is below the
+        // sheet's index along ξ̂, the usual case; otherwise the minimum of g on [−2n_max, 2n_max] is searched
+        // for (golden-section search, Press et al., Numerical Recipes §10.2).
+        long double inside = 0.0L;
+        if (!(g(inside) < 0.0L)) {
+            const long double golden = 0.5L * (std::sqrt(5.0L) - 1.0L);
+            long double low = -2.0L * n_max, high = 2.0L * n_max;
+            long double left = high - golden * (high - low), right = low + golden * (high - low);
+            long double g_left = g(left), g_right = g(right);
+            for (int iteration = 0; iteration < 100 && high - low > 1e-12L; ++iteration) {
+                if (g_left < g_right) {
+                    high = right; right = left; g_right = g_left;
+                    left = high - golden * (high - low); g_left = g(left);
+                } else {
+                    low = left; left = right; g_left = g_right;
+                    right = low + golden * (high - low); g_right = g(right);
+                }
             }
+            inside = 0.5L * (low + high);
+            if (!(g(inside) < 0.0L)) return false;  // the line misses the sheet: evanescent modes
         }
-        const long double inside = 0.5L * (low + high);
-        if (!(g(inside) < 0.0L)) return false;  // the line misses the sheet: evanescent modes
         for (int end = 0; end < 2; ++end) {
             // A root between the inside point and ±2 n_max, then Newton in long double.
             const double outside = end == 0 ? static_cast<double>(2.0L * n_max) : static_cast<double>(-2.0L * n_max);
