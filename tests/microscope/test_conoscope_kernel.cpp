@@ -81,7 +81,7 @@ TEST(ConoscopeKernel, MatchesTheReferencePathEverywhere) {
     EXPECT_GT(samples, 30000);
     EXPECT_LT(worst_random, 1e-13);
     // Both paths determine the vibration directions at an angle δ from a binormal only to about ε/δ
-    // (physics notes §2); the kernel keeps samples down to δ = 1e-6 rad, so the two agree to a few
+    // (docs/theory.md, "Eigenmodes"); the kernel keeps samples down to δ = 1e-6 rad, so the two agree to a few
     // times ε/1e-6 ≈ 2e-10 there, whatever the thickness.
     EXPECT_LT(worst_near_binormal, 1e-9);
     std::printf("kernel vs reference beyond the phase rounding: random directions %.2e, near binormals %.2e, %d samples\n", worst_random,

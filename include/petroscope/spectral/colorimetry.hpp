@@ -29,7 +29,7 @@ double planck_relative_radiance(double wavelength_nm, double temperature_k);
 LightSource blackbody_source(double temperature_k);
 
 /// XYZ = Σᵢ Tᵢ wᵢ for a transmission spectrum Tᵢ sampled on the grid, with
-/// wᵢ = S(λᵢ)·(x̄, ȳ, z̄)(λᵢ)·Δλ / Σⱼ S(λⱼ)ȳ(λⱼ)Δλ (physics notes §5), so that a perfect transmitter
+/// wᵢ = S(λᵢ)·(x̄, ȳ, z̄)(λᵢ)·Δλ / Σⱼ S(λⱼ)ȳ(λⱼ)Δλ (CIE 15:2004, §7), so that a perfect transmitter
 /// (T ≡ 1) has Y = 1. The wavelengths must be uniformly spaced (a WavelengthGrid).
 class SpectralIntegrator {
 public:
