@@ -75,9 +75,9 @@ int sample_bits(SampleType type) {
 DecodedImage allocated_image(const ReadSource& source, std::int64_t width, std::int64_t height, int channels, SampleType stored) {
     constexpr std::int64_t kMaxValues = std::int64_t{1} << 31;
     if (width <= 0 || height <= 0) source.fail("the image has no pixels (" + std::to_string(width) + " x " + std::to_string(height) + ")");
-    // Each factor is checked before the product, which therefore cannot overflow.
-    if (width >= kMaxValues || height >= kMaxValues || width >= kMaxValues / height / channels ||
-        width * height * channels >= kMaxValues) {
+    // Compared by division, so that no product can overflow: width < ⌊kMaxValues/(height·channels)⌋ holds
+    // exactly when width·height·channels ≤ kMaxValues − height·channels.
+    if (width >= kMaxValues || height >= kMaxValues || width >= kMaxValues / height / channels) {
         source.fail("the image is too large (" + std::to_string(width) + " x " + std::to_string(height) + " x " + std::to_string(channels) +
                     " values; fewer than 2^31 are read)");
     }

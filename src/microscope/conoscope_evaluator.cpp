@@ -54,6 +54,22 @@ SampleCrystal samples_of(const std::vector<BinormalFrame>& frames, const std::ve
     return SampleCrystal(pointers, std::vector<double>(pointers.size(), surround_n), thickness);
 }
 
+/// The modes of the pair (ξ, −ξ) for every sample of `samples` into `scratch` (resized when needed): the
+/// Newton iterations start from the previous point's roots when `continues_row` and the last run allow,
+/// and start again cold, still vectorised, when that warm start fails (coarse pixels). Whether any sample
+/// was flagged.
+bool solve_modes(const SampleCrystal& samples, const PolarizerPair& polars, const Eigen::Vector2d& xi, KernelScratch& scratch,
+                 bool continues_row, KernelOutput output) {
+    if (scratch.failed.size() != samples.padded_size()) {
+        scratch.resize(samples.padded_size());
+        scratch.warm_ready = false;
+    }
+    set_sample_directions(scratch, 0, samples.padded_size(), xi);
+    const bool warm = continues_row && scratch.warm_ready;
+    const bool any_failed = run_kernel(samples, polars, scratch, warm, output);
+    return any_failed && warm ? run_kernel(samples, polars, scratch, false, output) : any_failed;
+}
+
 }  // namespace
 
 ConoscopeEvaluator::ConoscopeEvaluator(const ConoscopeSettings& settings, const PrincipalIndexFunction& principal_n)
@@ -82,17 +98,9 @@ void ConoscopeEvaluator::spectral_pair(const Eigen::Vector2d& xi, SpectralScratc
     const bool every_wavelength_continues = continues_row && scratch.every_wavelength_current;
     scratch.nodes_usable = scratch.every_wavelength_current = scratch.interpolated = false;
     if (nodes_) {
-        KernelScratch& at_nodes = scratch.nodes;
-        if (at_nodes.failed.size() != node_samples_->padded_size()) {
-            at_nodes.resize(node_samples_->padded_size());
-            at_nodes.warm_ready = false;
-        }
-        set_sample_directions(at_nodes, 0, node_samples_->padded_size(), xi);
-        const bool warm = continues_row && at_nodes.warm_ready;
-        bool any_failed = run_kernel(*node_samples_, polars_, at_nodes, warm, KernelOutput::fields);
-        if (any_failed && warm) any_failed = run_kernel(*node_samples_, polars_, at_nodes, false, KernelOutput::fields);
-        scratch.nodes_usable = !any_failed && smooth_over_spectrum(at_nodes);
-        scratch.interpolated = scratch.nodes_usable && interpolated_pair(at_nodes, out_plus, out_minus);
+        const bool any_failed = solve_modes(*node_samples_, polars_, xi, scratch.nodes, continues_row, KernelOutput::fields);
+        scratch.nodes_usable = !any_failed && smooth_over_spectrum(scratch.nodes);
+        scratch.interpolated = scratch.nodes_usable && interpolated_pair(scratch.nodes, out_plus, out_minus);
     }
     if (scratch.interpolated) return;
     exact_pair(xi, scratch.every_wavelength, every_wavelength_continues, out_plus, out_minus);
@@ -116,15 +124,7 @@ void ConoscopeEvaluator::spectral_pair_same_modes(const Eigen::Vector2d& xi, Spe
 
 void ConoscopeEvaluator::exact_pair(const Eigen::Vector2d& xi, KernelScratch& scratch, bool continues_row, double* out_plus,
                                     double* out_minus) const {
-    if (scratch.failed.size() != spectral_samples_.padded_size()) {
-        scratch.resize(spectral_samples_.padded_size());
-        scratch.warm_ready = false;
-    }
-    set_sample_directions(scratch, 0, spectral_samples_.padded_size(), xi);
-    const bool warm = continues_row && scratch.warm_ready;
-    bool any_failed = run_kernel(spectral_samples_, polars_, scratch, warm);
-    // A warm start too far from the roots (coarse pixels): start again from scratch, still vectorised.
-    if (any_failed && warm) any_failed = run_kernel(spectral_samples_, polars_, scratch, false);
+    const bool any_failed = solve_modes(spectral_samples_, polars_, xi, scratch, continues_row, KernelOutput::transmission);
     collect_pair(xi, scratch, any_failed, out_plus, out_minus);
 }
 
@@ -145,14 +145,7 @@ void ConoscopeEvaluator::collect_pair(const Eigen::Vector2d& xi, const KernelScr
 void ConoscopeEvaluator::spectral_terms(const Eigen::Vector2d& xi, KernelScratch& scratch, bool continues_row,
                                         InterferenceTerms* out) const {
     if (!plate_jones_lab_.empty()) throw InputError("interference terms are defined without an accessory plate only");
-    if (scratch.failed.size() != spectral_samples_.padded_size()) {
-        scratch.resize(spectral_samples_.padded_size());
-        scratch.warm_ready = false;
-    }
-    set_sample_directions(scratch, 0, spectral_samples_.padded_size(), xi);
-    const bool warm = continues_row && scratch.warm_ready;
-    bool any_failed = run_kernel(spectral_samples_, polars_, scratch, warm, KernelOutput::terms);
-    if (any_failed && warm) any_failed = run_kernel(spectral_samples_, polars_, scratch, false, KernelOutput::terms);
+    const bool any_failed = solve_modes(spectral_samples_, polars_, xi, scratch, continues_row, KernelOutput::terms);
     for (std::size_t w = 0; w < spectral_samples_.size(); ++w) {
         if (any_failed && scratch.failed[w] != 0) {
             out[w] = reference_terms(w, xi);

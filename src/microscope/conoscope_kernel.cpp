@@ -298,11 +298,10 @@ void side_transmission(const SampleCrystal& crystal, const PolarizerPair& polars
                 modulation[i] = 2.0 * u0 * u1;
             }
         } else {
-            const double u0 = s_fast, u1 = s_slow, v0 = p_fast, v1 = p_slow;
-            out[i] = pair_intensity(u0, u1, sin2) + pair_intensity(v0, v1, sin2);
+            out[i] = pair_intensity(s_fast, s_slow, sin2) + pair_intensity(p_fast, p_slow, sin2);
             if constexpr (Terms) {
-                mean[i] = u0 * u0 + u1 * u1 + v0 * v0 + v1 * v1;
-                modulation[i] = 2.0 * (u0 * u1 + v0 * v1);
+                mean[i] = s_fast * s_fast + s_slow * s_slow + p_fast * p_fast + p_slow * p_slow;
+                modulation[i] = 2.0 * (s_fast * s_slow + p_fast * p_slow);
             }
         }
     }
