@@ -6,6 +6,7 @@
 #include "petroscope/api/conoscope_figure.hpp"
 
 #include <memory>
+#include <numbers>
 
 namespace petroscope::cli {
 namespace {
@@ -33,6 +34,7 @@ private:
     bool stack_ = false;
     bool exact_ = false;
     bool exact_spectrum_ = false;
+    std::string handedness_ = "right";
     PlateOptions plate_;
 };
 
@@ -50,7 +52,20 @@ ConoscopeRequest ConoscopeOptions::request() const {
     request.mounting = exact_ ? SlabMounting::thin_section_exact : stack_ ? SlabMounting::thin_section : SlabMounting::immersed;
     request.plate = plate_request(plate_);
     request.spectrum = exact_spectrum_ ? SpectrumSampling::exact : SpectrumSampling::interpolated;
+    request.handedness = with_option("--handedness", [&] { return parse_handedness(handedness_); });
     return request;
+}
+
+// The optical activity used: the handedness and the rotatory powers along X, Y, Z at the reference wavelength.
+nlohmann::json optical_activity_json(const ConoscopePlan& plan) {
+    if (!plan.handedness) return nullptr;
+    const Mineral& mineral = *plan.mineral;
+    const double sign = *plan.handedness == Handedness::right ? 1.0 : -1.0;
+    const Eigen::Vector3d rho = sign * mineral.principal_rotatory_power(mineral.reference_wavelength_nm) * 180.0 / std::numbers::pi * 1e3;
+    return {{"handedness", handedness_name(*plan.handedness)},
+            {"rotatory_power_deg_per_mm_xyz_at_reference", {rho[0], rho[1], rho[2]}},
+            {"model", "gyration tensor g = lambda rho / pi along the indicatrix axes (positive: dextrorotatory); it couples the two "
+                      "modes across the slab (first-order coupled modes, docs/theory.md 'Optical activity')"}};
 }
 
 // Every parameter of the figure but the light's (known once rendered).
@@ -68,6 +83,7 @@ nlohmann::json conoscope_sidecar(const ConoscopeRequest& request, const Conoscop
         {"mineral", {{"name", mineral.name}, {"file", mineral.file},
                      {"principal_n_xyz_at_reference", {reference_n[0], reference_n[1], reference_n[2]}},
                      {"reference_wavelength_nm", mineral.reference_wavelength_nm}}},
+        {"optical_activity", optical_activity_json(plan)},
         {"thickness_um", settings.thickness_um},
         {"orientation", {{"cut", plan.cut ? nlohmann::json(cut_name(*plan.cut)) : nlohmann::json(nullptr)},
                          {"azimuth_deg", request.orientation.azimuth_deg}, {"tilt_deg", request.orientation.tilt_deg},
@@ -86,7 +102,9 @@ nlohmann::json conoscope_sidecar(const ConoscopeRequest& request, const Conoscop
                          ? "modes solved at " + std::to_string(kSpectralNodeCount) +
                                " wavelengths and interpolated to the others; every wavelength solved near the optic axes and where "
                                "the interpolation's error estimate is too large (docs/conoscope.md)"
-                         : settings.spectrum == SpectrumSampling::exact ? "every wavelength solved (--exact-spectrum)" : "every wavelength solved"},
+                         : settings.spectrum == SpectrumSampling::exact ? "every wavelength solved (--exact-spectrum)"
+                         : settings.gyration                                ? "every wavelength solved (optically active crystal)"
+                                                                            : "every wavelength solved"},
         {"exposure", request.light.exposure},
         {"model", settings.exact ? "exact coherent 4x4 transfer matrix (Berreman) through the whole section, per image point"
                   : settings.mounting ? "single-pass Jones through the whole section (every layer's exact waves, Fresnel at every interface), per image point"
@@ -144,6 +162,10 @@ void ConoscopeOptions::add_options(CLI::App* command) {
         ->excludes(surround);
     command->add_flag("--exact", exact_, "With the whole stack: coherent 4x4 transfer matrix, every multiple reflection; slowest")
         ->excludes(surround);
+    command->add_option("--handedness", handedness_,
+                        "right | left: which form of an optically active mineral (quartz occurs as both; right turns the\n"
+                        "plane of polarization clockwise seen looking toward the light, docs/conventions.md)")
+        ->capture_default_str();
     command->add_flag("--exact-spectrum", exact_spectrum_,
                       "White light: solve the crystal's modes at every wavelength instead of at 8 and interpolating\n"
                       "(3 to 6 times slower; the reference the default is tested against, docs/conoscope.md)");

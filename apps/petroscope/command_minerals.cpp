@@ -45,6 +45,12 @@ nlohmann::json summary_json(const Mineral& mineral, const OpticalSummary& summar
         axes.push_back(entry);
     }
     document["axes"] = axes;
+    nlohmann::json activity = nlohmann::json::array();
+    for (const RotatoryPower& power : mineral.rotatory_powers) {
+        activity.push_back({{"key", power.key}, {"model", power.deg_per_mm.describe()}, {"source", power.source},
+                            {"deg_per_mm_right_handed", power.deg_per_mm(summary.wavelength_nm)}});
+    }
+    document["optical_activity"] = mineral.optically_active() ? activity : nlohmann::json(nullptr);
     document["indicatrix"] = mineral.indicatrix;
     document["file"] = mineral.file;
     return document;
@@ -68,6 +74,10 @@ void print_summary(const Mineral& mineral, const OpticalSummary& summary) {
     for (const PrincipalAxis& axis : mineral.axes) {
         std::printf("  %s: %s\n      source: %s\n", axis.key.c_str(), axis.n.describe().c_str(), axis.n_source.c_str());
         if (axis.kappa) std::printf("  kappa: %s\n      source: %s\n", axis.kappa->describe().c_str(), axis.kappa_source.c_str());
+    }
+    for (const RotatoryPower& power : mineral.rotatory_powers) {
+        std::printf("  %s: %s (%.3f deg/mm here, right-handed form)\n      source: %s\n", power.key.c_str(), power.deg_per_mm.describe().c_str(),
+                    power.deg_per_mm(summary.wavelength_nm), power.source.c_str());
     }
     if (!mineral.note.empty()) std::printf("  note: %s\n", mineral.note.c_str());
     std::printf("  file: %s\n", mineral.file.c_str());

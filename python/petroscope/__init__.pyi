@@ -166,6 +166,7 @@ def conoscope(
     plate_slow_deg: float = 45.0,
     wedge_position: float = 0.5,
     exact_spectrum: bool = False,
+    handedness: str = "right",
     progress: Progress = None,
 ) -> Result: ...
 def fit_conoscope(

@@ -13,12 +13,14 @@ ConoscopeRequest conoscope_request(const std::string& mineral, double thickness_
                                    double azimuth_deg, double tilt_deg, const std::optional<std::array<double, 3>>& euler_zyz_deg,
                                    double numerical_aperture, int size_px, const py::object& light, double stage_deg, double polarizer_deg,
                                    double analyzer_deg, bool analyzer_in, double surround_n, const std::string& mounting,
-                                   const std::optional<std::string>& plate, double plate_slow_deg, double wedge_position, bool exact_spectrum) {
+                                   const std::optional<std::string>& plate, double plate_slow_deg, double wedge_position, bool exact_spectrum,
+                                   const std::string& handedness) {
     return {.mineral = mineral, .thickness_um = thickness_um, .orientation = orientation_argument(cut, azimuth_deg, tilt_deg, euler_zyz_deg),
             .numerical_aperture = numerical_aperture, .size_px = size_px, .light = light_argument(light), .stage_deg = stage_deg,
             .polarizer_deg = polarizer_deg, .analyzer_deg = analyzer_deg, .analyzer_in = analyzer_in, .surround_n = surround_n,
             .mounting = parse_slab_mounting(mounting), .plate = plate_argument(plate, plate_slow_deg, wedge_position),
-            .spectrum = exact_spectrum ? SpectrumSampling::exact : SpectrumSampling::interpolated};
+            .spectrum = exact_spectrum ? SpectrumSampling::exact : SpectrumSampling::interpolated,
+            .handedness = parse_handedness(handedness)};
 }
 
 Result conoscope(const ConoscopeRequest& request, const py::object& progress) {
@@ -33,7 +35,7 @@ auto conoscope_arguments() {
                            py::arg("stage_deg") = 0.0, py::arg("polarizer_deg") = 0.0, py::arg("analyzer_deg") = 90.0,
                            py::arg("analyzer_in") = true, py::arg("surround_n") = 1.54, py::arg("mounting") = "immersed",
                            py::arg("plate") = py::none(), py::arg("plate_slow_deg") = 45.0, py::arg("wedge_position") = 0.5,
-                           py::arg("exact_spectrum") = false);
+                           py::arg("exact_spectrum") = false, py::arg("handedness") = "right");
 }
 
 }  // namespace
@@ -69,6 +71,8 @@ surround_n: index on both faces (immersed). mounting: 'immersed', 'thin-section'
 plate: 'gypsum', 'mica' or 'wedge'; plate_slow_deg its slow direction; wedge_position 0 to 1.
 exact_spectrum: white light with the modes solved at every wavelength instead of at 8 and interpolated
   (slower; the reference the default is tested against).
+handedness: 'right' or 'left', the form of an optically active mineral (quartz); right turns the plane of
+  polarization clockwise seen looking toward the light. No effect on an inactive mineral (a note says so).
 progress: called with the fraction done; return False to cancel (petroscope.Cancelled). Ctrl-C cancels.
 
 Returns a Result: image float32 (size_px, size_px, 3), linear sRGB, row 0 at the North; measurements:

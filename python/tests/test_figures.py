@@ -43,6 +43,19 @@ def test_conoscope_equals_the_command_line_in_white_and_monochromatic_light(run_
     # Every wavelength solved against 8 interpolated (the library's tests measure at most dE00 = 6e-3).
     assert np.max(np.abs(exact.image - white.image)) < 1e-4
 
+
+def test_conoscope_handedness_matches_the_cli_and_mirrors_quartz(run_cli):
+    left = petroscope.conoscope(mineral="quartz", thickness_um=1000, size_px=64, light=589.3, handedness="left")
+    image, _ = run_cli(["conoscope", "--mineral", "quartz", "--thickness", "1mm", "--size", "64", "--wavelength", "589.3nm",
+                        "--handedness", "left"])
+    assert_same_image(left.image, image)
+    # Crossed polars: the two forms give the same figure, mirrored in the polarizer's (E-W) direction.
+    right = petroscope.conoscope(mineral="quartz", thickness_um=1000, size_px=64, light=589.3)
+    assert np.max(np.abs(right.image - left.image[::-1, :, :])) < 1e-6
+    assert right.image[32, 32, 0] > 0.1  # the centre is lit: sin^2(21.7 deg) = 0.137
+    with pytest.raises(ValueError, match="expected right or left"):
+        petroscope.conoscope(mineral="quartz", size_px=64, handedness="up")
+
     mono = petroscope.conoscope(mineral="calcite", thickness_um=100, tilt_deg=10, azimuth_deg=30, size_px=64, light=589.3)
     image, sidecar = run_cli(["conoscope", "--mineral", "calcite", "--thickness", "100um", "--tilt-deg", "10", "--azimuth-deg", "30",
                               "--size", "64", "--wavelength", "589.3nm"])

@@ -41,6 +41,12 @@ ConoscopePlan plan_conoscope(const ConoscopeRequest& request, const MineralCatal
         settings.exact = request.mounting == SlabMounting::thin_section_exact;
     }
     settings.crystal_axes = indicatrix_axes(mineral, request.orientation);
+    if (mineral.optically_active()) {
+        plan.handedness = request.handedness;
+        settings.gyration = mineral_gyration(mineral, request.handedness);
+    } else if (request.handedness != Handedness::right) {
+        plan.notes.push_back("note: " + mineral.name + " is not optically active; the handedness has no effect");
+    }
     settings.validate();
     plan.cut = cut_used(mineral, request.orientation);
     plan.light = request.light;

@@ -25,6 +25,7 @@ ConoscopePhotoModel conoscope_photo_model(const Mineral& mineral, const Conoscop
         return cut_orientation(cut, optical_class, reference_n, azimuth_deg, tilt_deg);
     };
     model.rgb_per_transmission = rgb_per_transmission(setup.light);
+    model.leaves_out_optical_activity = mineral.optically_active();
     return model;
 }
 

@@ -60,6 +60,9 @@ OpticalMedium parse_medium(const JsonValue& medium, double wavelength_nm, const 
     } catch (const InputError& e) {
         throw name.error(e.what());
     }
+    if (mineral->optically_active()) {
+        throw name.error(mineral->name + " is optically active, which the interface model does not model yet (docs/theory.md, \"Optical activity\")");
+    }
     const Eigen::Vector3d n = mineral->principal_n(wavelength_nm);
     if (!n.allFinite() || n.minCoeff() < 1.0) throw name.error(mineral->name + " has no physical index at this wavelength");
     return OpticalMedium::from_n_kappa(n, mineral->principal_kappa(wavelength_nm), result.axes);

@@ -160,6 +160,9 @@ SceneCrystal read_crystal(const JsonValue& value, const MineralCatalog& catalog,
     if (mineral->absorbing()) {
         throw mineral_name.error(mineral->name + " absorbs light; scenes take transparent crystals only (the renderer has no attenuation inside crystals)");
     }
+    if (mineral->optically_active()) {
+        throw mineral_name.error(mineral->name + " is optically active, which the renderer does not model yet; scenes take inactive crystals only");
+    }
     crystal.mineral = mineral->name;
     crystal.principal_n = [mineral](double wavelength_nm) { return mineral->principal_n(wavelength_nm); };
     if (value.has("calcite_rhomb") == value.has("vertices_mm")) throw value.error("expected exactly one of calcite_rhomb and vertices_mm (with faces)");

@@ -24,6 +24,7 @@ void ConoscopeSettings::validate() const {
     if (!(surround_n >= 1.0) || !std::isfinite(surround_n)) fail("surrounding-medium index must be a finite number >= 1");
     if (!mounting && surround_n <= numerical_aperture) fail("surrounding-medium index must exceed the numerical aperture");
     if (exact && !mounting) fail("the exact 4x4 mode needs the whole stack (a mounting)");
+    if (gyration && mounting) fail("optical activity is modelled for a slab immersed in its surround only, not yet in the mounted section");
     for (const double angle : {polarizer_deg, analyzer_deg, stage_deg}) {
         if (!std::isfinite(angle)) fail("angles must be finite numbers of degrees");
     }
@@ -40,7 +41,7 @@ bool interpolates_spectrum(const ConoscopeSettings& settings) {
     std::vector<double> distinct = settings.wavelengths_nm;
     std::sort(distinct.begin(), distinct.end());
     distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
-    return settings.spectrum == SpectrumSampling::interpolated && !settings.mounting &&
+    return settings.spectrum == SpectrumSampling::interpolated && !settings.mounting && !settings.gyration &&
            distinct.size() >= 2 * static_cast<std::size_t>(kSpectralNodeCount);
 }
 
@@ -66,6 +67,7 @@ ConoscopeTerms::ConoscopeTerms(const ConoscopeSettings& settings, const Principa
     : settings_(settings) {
     settings_.validate();
     if (settings_.plate || settings_.mounting) throw InputError("interference terms are defined for a slab without a plate or mounting only");
+    if (settings_.gyration) throw InputError("interference terms are defined for an optically inactive crystal only");
     settings_.spectrum = SpectrumSampling::exact;  // the terms are solved at every wavelength
     wavelength_count_ = settings_.wavelengths_nm.size();
     evaluator_ = std::make_unique<detail::ConoscopeEvaluator>(settings_, principal_n);
@@ -100,7 +102,8 @@ void require_one_crystal(const std::vector<ConoscopeSettings>& settings) {
         const bool same_crystal = other.crystal_axes == first.crystal_axes && other.stage_deg == first.stage_deg &&
                                   other.thickness_um == first.thickness_um && other.wavelengths_nm == first.wavelengths_nm &&
                                   other.numerical_aperture == first.numerical_aperture && other.size_px == first.size_px &&
-                                  other.surround_n == first.surround_n && other.spectrum == first.spectrum;
+                                  other.surround_n == first.surround_n && other.spectrum == first.spectrum &&
+                                  static_cast<bool>(other.gyration) == static_cast<bool>(first.gyration);
         if (!same_crystal) throw InputError("figures that share their modes may differ in their polars and plate only");
     }
 }

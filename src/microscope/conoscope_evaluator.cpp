@@ -5,6 +5,7 @@
 #include "petroscope/core/error.hpp"
 
 #include "petroscope/core/angles.hpp"
+#include "petroscope/core/text.hpp"
 #include "petroscope/optics/orientation.hpp"
 
 #include <cmath>
@@ -30,6 +31,20 @@ std::vector<BinormalFrame> frames_for(const ConoscopeSettings& settings, const P
         frames.emplace_back(indicatrix);
     }
     return frames;
+}
+
+// The gyration tensor in the lab frame per wavelength: g_lab = A·g·Aᵀ with A the indicatrix axes turned by the stage.
+std::vector<Eigen::Matrix3d> gyration_for(const ConoscopeSettings& settings) {
+    std::vector<Eigen::Matrix3d> tensors;
+    if (!settings.gyration) return tensors;
+    const Eigen::Matrix3d axes = rotation_z_deg(settings.stage_deg) * settings.crystal_axes;
+    for (const double wavelength_nm : settings.wavelengths_nm) {
+        const Eigen::Matrix3d g = settings.gyration(wavelength_nm);
+        if (!g.allFinite()) throw InputError("the crystal's gyration tensor is not finite at " + format_number(wavelength_nm) + " nm");
+        const Eigen::Matrix3d lab = axes * g * axes.transpose();
+        tensors.push_back(0.5 * (lab + lab.transpose()));
+    }
+    return tensors;
 }
 
 template <typename Wavelengths>
@@ -78,8 +93,13 @@ ConoscopeEvaluator::ConoscopeEvaluator(const ConoscopeSettings& settings, const 
       frames_(frames_for(settings, principal_n, settings.wavelengths_nm)),
       k0_thickness_(k0_thickness_for(settings.wavelengths_nm, settings.thickness_um)),
       k0_per_um_(k0_thickness_for(settings.wavelengths_nm, 1.0)),
-      spectral_samples_(samples_of(frames_, k0_thickness_, settings.surround_n, 1)) {
+      spectral_samples_(samples_of(frames_, k0_thickness_, settings.surround_n, 1)),
+      gyration_lab_(gyration_for(settings)) {
     if (frames_.size() == 1) monochromatic_samples_ = samples_of(frames_, k0_thickness_, settings.surround_n, kMonochromaticBatch);
+    if (!gyration_lab_.empty()) {
+        set_gyration(spectral_samples_, gyration_lab_);
+        if (monochromatic_samples_) set_gyration(*monochromatic_samples_, gyration_lab_);  // one wavelength: repeated
+    }
     if (interpolates_spectrum(settings)) {
         nodes_.emplace(settings.wavelengths_nm);
         const std::vector<BinormalFrame> node_frames = frames_for(settings, principal_n, nodes_->wavelengths_nm());
@@ -189,6 +209,7 @@ std::optional<std::array<SlabTransfer, 2>> ConoscopeEvaluator::reference_transfe
         modes.forward = forward[side];
         for (int sheet = 0; sheet < 2; ++sheet) modes.backward[sheet] = time_reversed(forward[1 - side][sheet]);
         transfers[side] = slab_transfer(modes, directions[side], settings_.surround_n, settings_.surround_n);
+        if (!gyration_lab_.empty()) transfers[side].gyration_coupling = gyration_coupling(forward[side], directions[side].xi, gyration_lab_[w]);
     }
     return transfers;
 }
@@ -199,8 +220,9 @@ std::array<double, 2> ConoscopeEvaluator::reference_pair(std::size_t w, const Ei
     if (!transfers) return result;
     for (int side = 0; side < 2; ++side) {
         const TangentialWavevector direction = TangentialWavevector::from_xi(side == 0 ? xi : Eigen::Vector2d(-xi));
-        result[side] = plate_jones_lab_.empty() ? analyzed_intensity((*transfers)[side], direction, k0_thickness_[w])
-                                                : analyzed_intensity_with_plate((*transfers)[side], direction, k0_thickness_[w], w);
+        result[side] = plate_jones_lab_.empty() && gyration_lab_.empty()
+                           ? analyzed_intensity((*transfers)[side], direction, k0_thickness_[w])
+                           : analyzed_intensity_complex((*transfers)[side], direction, k0_thickness_[w], w);
     }
     return result;
 }
@@ -248,16 +270,14 @@ double ConoscopeEvaluator::analyzed_intensity(const SlabTransfer& transfer, cons
     return intensity;
 }
 
-double ConoscopeEvaluator::analyzed_intensity_with_plate(const SlabTransfer& transfer, const TangentialWavevector& direction,
-                                                         double k0_thickness, std::size_t w) const {
+double ConoscopeEvaluator::analyzed_intensity_complex(const SlabTransfer& transfer, const TangentialWavevector& direction,
+                                                      double k0_thickness, std::size_t w) const {
     const Eigen::Vector2d incident(polars_.polarizer.dot(direction.azimuthal), polars_.polarizer.dot(direction.radial));
-    const std::complex<double> i(0.0, 1.0);
-    const Eigen::Vector2cd modes = (transfer.entry * incident).cast<std::complex<double>>().cwiseProduct(
-        Eigen::Vector2cd(std::exp(i * k0_thickness * transfer.q[0]), std::exp(i * k0_thickness * transfer.q[1])));
+    const Eigen::Vector2cd modes = slab_propagation(transfer, k0_thickness) * (transfer.entry * incident).cast<std::complex<double>>();
     const Eigen::Vector2cd out_sp = transfer.exit.cast<std::complex<double>>() * modes;
     const Eigen::Vector2cd lab = direction.azimuthal.cast<std::complex<double>>() * out_sp[0] +
                                  direction.radial.cast<std::complex<double>>() * out_sp[1];
-    const Eigen::Vector2cd after_plate = plate_jones_lab_[w] * lab;
+    const Eigen::Vector2cd after_plate = plate_jones_lab_.empty() ? lab : Eigen::Vector2cd(plate_jones_lab_[w] * lab);
     if (!polars_.analyzer_in) return after_plate.squaredNorm();
     return std::norm(polars_.analyzer.cast<std::complex<double>>().dot(after_plate));
 }

@@ -74,10 +74,11 @@ private:
     std::array<Eigen::Vector2d, 2> analyzed_amplitude_pairs(const SlabTransfer& transfer, const TangentialWavevector& direction,
                                                             int& count) const;
     double analyzed_intensity(const SlabTransfer& transfer, const TangentialWavevector& direction, double k0_thickness) const;
-    /// With an accessory plate: the field leaves the slab as a_s·ŝ + a_p·ρ̂, crosses the plate (lab Jones
-    /// matrix of wavelength `w`), then the analyzer.
-    double analyzed_intensity_with_plate(const SlabTransfer& transfer, const TangentialWavevector& direction,
-                                         double k0_thickness, std::size_t w) const;
+    /// With an accessory plate or an optically active crystal: the field leaves the slab as a_s·ŝ + a_p·ρ̂ (complex
+    /// mode amplitudes, slab_propagation), crosses the plate if any (lab Jones matrix of wavelength `w`), then the
+    /// analyzer.
+    double analyzed_intensity_complex(const SlabTransfer& transfer, const TangentialWavevector& direction,
+                                      double k0_thickness, std::size_t w) const;
 
     const ConoscopeSettings& settings_;
     PolarizerPair polars_;
@@ -87,6 +88,7 @@ private:
     SampleCrystal spectral_samples_;                     // one sample per wavelength
     std::optional<SampleCrystal> monochromatic_samples_;  // the single wavelength, kMonochromaticBatch times
     std::vector<Eigen::Matrix2cd> plate_jones_lab_;       // per wavelength; empty without a plate
+    std::vector<Eigen::Matrix3d> gyration_lab_;           // per wavelength; empty for an inactive crystal
     // White light from spectral nodes (none: every wavelength solved).
     std::optional<SpectralNodes> nodes_;
     std::optional<SampleCrystal> node_samples_;

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace petroscope::detail {
 namespace {
@@ -158,6 +159,7 @@ void solve_vibrations(const SampleCrystal& crystal, KernelScratch& scratch) {
     const double* q_in = scratch.q[Side][Sheet].data();
     auto& psi = scratch.psi[Side][Sheet];
     double *psi0 = psi[0].data(), *psi1 = psi[1].data(), *psi2 = psi[2].data(), *psi3 = psi[3].data();
+    double* e_z = scratch.e_z[Side][Sheet].data();
     std::int64_t* failed = scratch.sheet_failed[Side][Sheet].data();
     const int count = static_cast<int>(crystal.padded_size());
 #pragma omp simd
@@ -199,18 +201,51 @@ void solve_vibrations(const SampleCrystal& crystal, KernelScratch& scratch) {
         psi1[i] = hx * s_x + hy * s_y;
         psi2[i] = ex * s_x + ey * s_y;
         psi3[i] = -(hx * rho_x + hy * rho_y);
+        e_z[i] = ez;
         // |vᵢ| = |N|²·sin(angle to bᵢ).
         const bool near_binormal = std::min(r1, r2) <= kNearBinormal * n2;
         failed[i] |= static_cast<std::int64_t>(near_binormal || !std::isfinite(q));
     }
 }
 
+// Optical activity (optics/slab.hpp, gyration_coupling and slab_propagation): the fast and slow amplitudes
+// t = (t₀, t₁) cross the slab as exp(i·k₀d·Q)·t = e^{iφ̄}·(R + i·I) with the real vectors
+// R = (c·t₀ − s·b₀·t₁, s·b₁·t₀ + c·t₁) and I = s·a·(t₀, −t₁), where a = k₀d(q_fast − q_slow)/2, bₘ = k₀d·cₘ,
+// Ω = √(a² + b₀b₁), c = cos Ω and s = sin Ω/Ω. The phase e^{iφ̄} cancels in every intensity.
+struct ActiveAmplitudes {
+    double r0, r1, i0, i1;
+};
+[[gnu::always_inline]] inline ActiveAmplitudes active_amplitudes(double t0, double t1, double a, double b0, double b1) {
+    const double omega = std::sqrt(a * a + b0 * b1);
+    const SineCosine sc = sine_cosine(omega);
+    const double s = omega > 1e-6 ? sc.sine / omega : 1.0 - omega * omega / 6.0;
+    return {sc.cosine * t0 - s * b0 * t1, s * b1 * t0 + sc.cosine * t1, s * a * t0, -s * a * t1};
+}
+
+// The coupling (c₀, c₁) of optics/slab.hpp's gyration_coupling for one sample: τ = (g·N̄)·(E_slow × E_fast),
+// cₘ = τ/(2fₘ), fₘ = (Eₘ × Hₘ)_z = ψ₁ψ₂ + ψ₃ψ₄, N̄ = (ξ, (q_fast + q_slow)/2), with the lab-frame E of each mode
+// rebuilt from ψ (E·ρ̂, E·ŝ) and E·ẑ.
+struct ModeVectors {
+    double fx, fy, fz, sx, sy, sz;  // E_fast, E_slow
+};
+[[gnu::always_inline]] inline std::pair<double, double> coupling(const double* g, const ModeVectors& e, double xi_x, double xi_y,
+                                                                  double q_mean, double flux_fast, double flux_slow) {
+    // g·N̄ with g = (g_xx, g_yy, g_zz, g_xy, g_xz, g_yz).
+    const double gx = g[0] * xi_x + g[3] * xi_y + g[4] * q_mean;
+    const double gy = g[3] * xi_x + g[1] * xi_y + g[5] * q_mean;
+    const double gz = g[4] * xi_x + g[5] * xi_y + g[2] * q_mean;
+    const double tau = gx * (e.sy * e.fz - e.sz * e.fy) + gy * (e.sz * e.fx - e.sx * e.fz) + gz * (e.sx * e.fy - e.sy * e.fx);
+    return {0.5 * tau / flux_fast, 0.5 * tau / flux_slow};
+}
+
 // Single-pass transmission for one side from its forward modes and the other side's (time-reversed:
 // the backward modes), after optics/slab.cpp's slab_transfer and the conoscope's analyzed intensity.
-// With a plate, the effective analyzers of SampleCrystal::plate_analyzer take the analyzer's place.
-template <bool AnalyzerIn, KernelOutput Output, bool Plate, int Side>
+// With a plate, the effective analyzers of SampleCrystal::plate_analyzer take the analyzer's place; an optically
+// active crystal (Active) couples the modes across the slab (active_amplitudes).
+template <bool AnalyzerIn, KernelOutput Output, bool Plate, bool Active, int Side>
 void side_transmission(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch) {
     static_assert(!(Plate && Output != KernelOutput::transmission), "terms and fields are defined without a plate only");
+    static_assert(!(Active && Output != KernelOutput::transmission), "terms and fields are defined without optical activity only");
     constexpr bool Terms = Output == KernelOutput::terms;
     constexpr int other = 1 - Side;
     const double *rho_x0 = scratch.rho_x.data(), *rho_y0 = scratch.rho_y.data(), *reversal = scratch.reversal.data();
@@ -224,6 +259,10 @@ void side_transmission(const SampleCrystal& crystal, const PolarizerPair& polars
     const double *bs0 = opposite[1][0].data(), *bs1 = opposite[1][1].data(), *bs2 = opposite[1][2].data(), *bs3 = opposite[1][3].data();
     const double* surround = crystal.surround_n.data();
     const double* k0_thickness = crystal.k0_thickness.data();
+    const double *ez_fast = scratch.e_z[Side][0].data(), *ez_slow = scratch.e_z[Side][1].data();
+    const auto& gyration = crystal.gyration;
+    const double *g_xx = gyration[0].data(), *g_yy = gyration[1].data(), *g_zz = gyration[2].data();
+    const double *g_xy = gyration[3].data(), *g_xz = gyration[4].data(), *g_yz = gyration[5].data();
     double* out = scratch.transmission[Side].data();
     double *mean = scratch.mean[Side].data(), *modulation = scratch.modulation[Side].data();
     auto& field = scratch.mode_field[Side];
@@ -272,6 +311,37 @@ void side_transmission(const SampleCrystal& crystal, const PolarizerPair& polars
         const double r10 = (bm00 * fm10 - bm10 * fm00) * inverse_det_bm, r11 = (bm00 * fm11 - bm10 * fm01) * inverse_det_bm;
         const double e00 = f00 - (bp00 * r00 + bp01 * r10), e01 = f01 - (bp00 * r01 + bp01 * r11);
         const double e10 = f10 - (bp10 * r00 + bp11 * r10), e11 = f11 - (bp10 * r01 + bp11 * r11);
+        if constexpr (Active) {
+            constexpr double direction = Side == 0 ? 1.0 : -1.0;
+            const ModeVectors e{f0[i] * rho_x + f2[i] * s_x, f0[i] * rho_y + f2[i] * s_y, ez_fast[i],
+                                s0[i] * rho_x + s2[i] * s_x, s0[i] * rho_y + s2[i] * s_y, ez_slow[i]};
+            const double g[6] = {g_xx[i], g_yy[i], g_zz[i], g_xy[i], g_xz[i], g_yz[i]};
+            const auto [c0, c1] = coupling(g, e, direction * xi_x0[i], direction * xi_y0[i], 0.5 * (qf[i] + qs[i]),
+                                           f0[i] * f1[i] + f2[i] * f3[i], s0[i] * s1[i] + s2[i] * s3[i]);
+            const double k0d = k0_thickness[i];
+            const ActiveAmplitudes m = active_amplitudes(t0, t1, 0.5 * k0d * (qf[i] - qs[i]), k0d * c0, k0d * c1);
+            // The field leaving the slab, R + i·I in (ŝ, ρ̂).
+            const double rs = e00 * m.r0 + e01 * m.r1, rp = e10 * m.r0 + e11 * m.r1;
+            const double is = e00 * m.i0 + e01 * m.i1, ip = e10 * m.i0 + e11 * m.i1;
+            if constexpr (Plate) {
+                // |b·(R + iI)|² = (b_re·R − b_im·I)² + (b_re·I + b_im·R)², b in (ŝ, ρ̂).
+                const auto analyzed = [&](double re_x, double re_y, double im_x, double im_y) {
+                    const double re_s = re_x * s_x + re_y * s_y, re_p = re_x * rho_x + re_y * rho_y;
+                    const double im_s = im_x * s_x + im_y * s_y, im_p = im_x * rho_x + im_y * rho_y;
+                    const double real = re_s * rs + re_p * rp - im_s * is - im_p * ip;
+                    const double imaginary = re_s * is + re_p * ip + im_s * rs + im_p * rp;
+                    return real * real + imaginary * imaginary;
+                };
+                out[i] = analyzed(b0_re_x[i], b0_re_y[i], b0_im_x[i], b0_im_y[i]);
+                if constexpr (!AnalyzerIn) out[i] += analyzed(b1_re_x[i], b1_re_y[i], b1_im_x[i], b1_im_y[i]);
+            } else if constexpr (AnalyzerIn) {
+                const double real = a_s * rs + a_p * rp, imaginary = a_s * is + a_p * ip;
+                out[i] = real * real + imaginary * imaginary;
+            } else {
+                out[i] = rs * rs + rp * rp + is * is + ip * ip;
+            }
+            continue;
+        }
         const double sin2 = sin_squared(0.5 * k0_thickness[i] * (qf[i] - qs[i]));
         // The field each mode leaves with, in (ŝ, ρ̂).
         const double s_fast = e00 * t0, s_slow = e01 * t1, p_fast = e10 * t0, p_slow = e11 * t1;
@@ -319,14 +389,14 @@ void solve_side(const SampleCrystal& crystal, KernelScratch& scratch, bool warm)
     solve_vibrations<1, Side>(crystal, scratch);
 }
 
-template <KernelOutput Output, bool Plate>
+template <KernelOutput Output, bool Plate, bool Active = false>
 void transmission_of_both_sides(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch) {
     if (polars.analyzer_in) {
-        side_transmission<true, Output, Plate, 0>(crystal, polars, scratch);
-        side_transmission<true, Output, Plate, 1>(crystal, polars, scratch);
+        side_transmission<true, Output, Plate, Active, 0>(crystal, polars, scratch);
+        side_transmission<true, Output, Plate, Active, 1>(crystal, polars, scratch);
     } else {
-        side_transmission<false, Output, Plate, 0>(crystal, polars, scratch);
-        side_transmission<false, Output, Plate, 1>(crystal, polars, scratch);
+        side_transmission<false, Output, Plate, Active, 0>(crystal, polars, scratch);
+        side_transmission<false, Output, Plate, Active, 1>(crystal, polars, scratch);
     }
 }
 
@@ -379,9 +449,19 @@ void set_plate(SampleCrystal& crystal, const std::vector<Eigen::Matrix2cd>& jone
     }
 }
 
+void set_gyration(SampleCrystal& crystal, const std::vector<Eigen::Matrix3d>& gyration) {
+    crystal.gyrotropic = true;
+    for (auto& component : crystal.gyration) component.clear();
+    for (std::size_t j = 0; j < crystal.padded_size(); ++j) {
+        const Eigen::Matrix3d& g = gyration[std::min(j, gyration.size() - 1)];
+        const std::array<double, 6> components{g(0, 0), g(1, 1), g(2, 2), g(0, 1), g(0, 2), g(1, 2)};
+        for (std::size_t c = 0; c < 6; ++c) crystal.gyration[c].push_back(components[c]);
+    }
+}
+
 void KernelScratch::resize(std::size_t padded_samples) {
     for (auto* array : {&xi_x, &xi_y, &rho_x, &rho_y, &reversal}) array->resize(padded_samples);
-    for (auto* set : {&q_start, &q, &dq_dxi_x, &dq_dxi_y}) {
+    for (auto* set : {&q_start, &q, &dq_dxi_x, &dq_dxi_y, &e_z}) {
         for (auto& side : *set) for (auto& sheet : side) sheet.resize(padded_samples);
     }
     for (auto& side : psi) for (auto& sheet : side) for (auto& component : sheet) component.resize(padded_samples);
@@ -406,10 +486,17 @@ namespace {
 
 /// The transmission from the modes in `scratch`, and each sample's failure flag; whether any failed.
 bool transmit_and_flag(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch, KernelOutput output) {
+    if (crystal.gyrotropic && output != KernelOutput::transmission) {
+        throw std::logic_error("conoscope kernel: interference terms and fields are defined without optical activity only");
+    }
     if (output == KernelOutput::terms) {
         transmission_of_both_sides<KernelOutput::terms, false>(crystal, polars, scratch);
     } else if (output == KernelOutput::fields) {
         transmission_of_both_sides<KernelOutput::fields, false>(crystal, polars, scratch);
+    } else if (crystal.gyrotropic && crystal.with_plate) {
+        transmission_of_both_sides<KernelOutput::transmission, true, true>(crystal, polars, scratch);
+    } else if (crystal.gyrotropic) {
+        transmission_of_both_sides<KernelOutput::transmission, false, true>(crystal, polars, scratch);
     } else if (crystal.with_plate) {
         transmission_of_both_sides<KernelOutput::transmission, true>(crystal, polars, scratch);
     } else {

@@ -43,7 +43,15 @@ struct SampleCrystal {
     /// plate_analyzer[k]: Re b_x, Re b_y, Im b_x, Im b_y; the second only without an analyzer.
     bool with_plate = false;
     std::array<std::array<std::vector<double>, 4>, 2> plate_analyzer;
+
+    /// Optical activity: the gyration tensor g per sample in the lab frame (optics/gyration.hpp), components
+    /// g_xx, g_yy, g_zz, g_xy, g_xz, g_yz, which couples the two modes as optics/slab.hpp's gyration_coupling.
+    bool gyrotropic = false;
+    std::array<std::vector<double>, 6> gyration;
 };
+
+/// Makes `crystal` optically active: `gyration` per sample (its size() of them; the padding repeats the last).
+void set_gyration(SampleCrystal& crystal, const std::vector<Eigen::Matrix3d>& gyration);
 
 /// The polarizer and analyzer.
 struct PolarizerPair {
@@ -64,6 +72,7 @@ struct KernelScratch {
     // [side][sheet]: the Newton start, q, ∂q/∂ξ (for the next pixel's start) and ψ₁…ψ₄ of each mode.
     std::array<std::array<std::vector<double>, 2>, 2> q_start, q, dq_dxi_x, dq_dxi_y;
     std::array<std::array<std::array<std::vector<double>, 4>, 2>, 2> psi;
+    std::array<std::array<std::vector<double>, 2>, 2> e_z;  // [side][sheet]: E·ẑ of each mode (ψ has E·ρ̂ and E·ŝ)
     std::array<std::vector<double>, 2> previous_xi_x, previous_xi_y;  // [side], for the warm start
     // Flags are 8-byte integers: a narrower type would make the vectoriser process 64 samples at a time.
     std::array<std::array<std::vector<std::int64_t>, 2>, 2> sheet_failed;
@@ -86,8 +95,8 @@ void set_sample_directions(KernelScratch& scratch, std::size_t first, std::size_
 /// What run_kernel leaves in the scratch besides the transmission.
 enum class KernelOutput {
     transmission,  // only the transmission
-    terms,         // also scratch.mean and scratch.modulation (no plate)
-    fields,        // also scratch.mode_field and scratch.phase_difference (no plate)
+    terms,         // also scratch.mean and scratch.modulation (no plate, no optical activity)
+    fields,        // also scratch.mode_field and scratch.phase_difference (no plate, no optical activity)
 };
 
 /// Transmission of every sample into scratch.transmission[side]. With `warm` (allowed when

@@ -21,6 +21,13 @@ Eigen::Matrix2d sp_to_lab(const TangentialWavevector& direction) {
 
 }  // namespace
 
+GyrationFunction mineral_gyration(const Mineral& mineral, Handedness handedness) {
+    if (!mineral.optically_active()) return {};
+    return [&mineral, handedness](double wavelength_nm) {
+        return gyration_tensor(mineral.principal_rotatory_power(wavelength_nm), Eigen::Matrix3d::Identity(), wavelength_nm, handedness);
+    };
+}
+
 DispersiveMedium DispersiveMedium::of(const Mineral& mineral, const Eigen::Matrix3d& axes) {
     DispersiveMedium medium;
     medium.principal_n = [&mineral](double wavelength_nm) { return mineral.principal_n(wavelength_nm); };

@@ -46,6 +46,14 @@ Eigen::Vector3d Mineral::principal_kappa(double wavelength_nm) const {
     return along_xyz(*this, listed);
 }
 
+Eigen::Vector3d Mineral::principal_rotatory_power(double wavelength_nm) const {
+    Eigen::Vector3d listed = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i < rotatory_powers.size() && i < 3; ++i) {
+        listed[static_cast<Eigen::Index>(i)] = rotatory_powers[i].deg_per_mm(wavelength_nm) * std::numbers::pi / 180.0 * 1e-3;
+    }
+    return along_xyz(*this, listed);
+}
+
 bool Mineral::absorbing() const {
     return std::any_of(axes.begin(), axes.end(), [](const PrincipalAxis& axis) { return axis.kappa.has_value(); });
 }

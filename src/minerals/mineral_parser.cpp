@@ -129,6 +129,58 @@ PrincipalAxis read_axis(RecordReader& reader, const std::string& suffix, std::ve
     return axis;
 }
 
+// Largest rotatory power accepted, °/mm; beyond it a value is taken for a unit mistake (quartz turns 21.7 °/mm at
+// 589 nm: the same figure in °/cm or in µrad/µm would read 217 or 379).
+constexpr double kMaxRotatoryPowerDegPerMm = 1000.0;
+
+// The rotatory power keys of an optical class, in the order of Mineral::rotatory_powers.
+std::vector<std::string> rotatory_power_keys(OpticalClass optical_class) {
+    switch (optical_class) {
+        case OpticalClass::isotropic: return {"rotatory_power"};
+        case OpticalClass::uniaxial: return {"rotatory_power_normal", "rotatory_power_axis"};
+        case OpticalClass::biaxial: return {};
+    }
+    return {};
+}
+
+// Optical activity: all of the class's rotatory power keys or none, each with its source, in range at the
+// reference wavelength, and the one along the optic axis (any direction when isotropic) positive: the record
+// gives the right-handed form.
+void read_rotatory_powers(RecordReader& reader, Mineral& mineral, std::vector<std::string>& valid) {
+    const std::vector<std::string> keys = rotatory_power_keys(mineral.optical_class);
+    std::vector<const Entry*> entries;
+    for (const std::string& key : keys) {
+        valid.push_back(key);
+        valid.push_back(key + ".source");
+        entries.push_back(reader.find(key));
+    }
+    const auto given = std::count_if(entries.begin(), entries.end(), [](const Entry* entry) { return entry != nullptr; });
+    if (given == 0) return;
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+        if (entries[i] == nullptr) {
+            const Entry& other = *entries[1 - i];
+            throw reader.error(other, "optical activity of a uniaxial crystal needs both rotatory_power_axis and "
+                                      "rotatory_power_normal (°/mm for waves along and across the optic axis); " +
+                                          keys[i] + " is missing");
+        }
+        RotatoryPower power{keys[i], parse_model(reader, *entries[i], keys[i]),
+                            reader.require(keys[i] + ".source", "where the numbers of " + keys[i] + " come from").value};
+        const double value = power.deg_per_mm(mineral.reference_wavelength_nm);
+        if (!std::isfinite(value) || std::abs(value) > kMaxRotatoryPowerDegPerMm) {
+            std::ostringstream what;
+            what << keys[i] << " evaluates to " << value << " deg/mm at " << mineral.reference_wavelength_nm
+                 << " nm; expected a finite rotatory power within ±" << kMaxRotatoryPowerDegPerMm << " deg/mm";
+            throw reader.error(*entries[i], what.str());
+        }
+        mineral.rotatory_powers.push_back(std::move(power));
+    }
+    const RotatoryPower& along_axis = mineral.rotatory_powers.back();
+    if (!(along_axis.deg_per_mm(mineral.reference_wavelength_nm) > 0.0)) {
+        throw reader.error(*entries.back(), along_axis.key + " must be positive at the reference wavelength: a record gives the "
+                                            "right-handed (dextrorotatory) form, and --handedness left mirrors it");
+    }
+}
+
 }  // namespace
 
 Mineral parse_mineral(std::string_view text, const std::string& file_name) {
@@ -169,6 +221,7 @@ Mineral parse_mineral(std::string_view text, const std::string& file_name) {
     for (const std::string& suffix : axis_suffixes(mineral.optical_class)) {
         mineral.axes.push_back(read_axis(reader, suffix, valid));
     }
+    read_rotatory_powers(reader, mineral, valid);
     reader.reject_unused(valid);
 
     // The indices must be physical at the reference wavelength, and ordered as the labels say.

@@ -77,22 +77,93 @@ struct PlaneOfIncidence {
 
 // A homogeneous medium seen in the plane-of-incidence frame.
 struct Medium {
-    Eigen::Matrix3cd epsilon;  // ε' = Rᵀ ε R, R = (ρ̂, ŝ, ẑ)
+    Eigen::Matrix3cd epsilon;  // ε' = Rᵀ ε R, R = (ρ̂, ŝ, ẑ); for a chiral medium the bianisotropic ε_b = ε + κ²
+    Eigen::Matrix3d chirality = Eigen::Matrix3d::Zero();  // κ' = Rᵀ κ R
     double xi = 0.0;
+    bool chiral = false;
     bool isotropic = false;
     bool lossless = false;
     Complex isotropic_epsilon;  // ε̄ = tr ε / 3
 
-    Medium(const Eigen::Matrix3cd& epsilon_lab, const PlaneOfIncidence& plane) : xi(plane.xi) {
+    Medium(const Eigen::Matrix3cd& epsilon_lab, const PlaneOfIncidence& plane,
+           const Eigen::Matrix3d& chirality_lab = Eigen::Matrix3d::Zero())
+        : chirality(plane.rotation.transpose() * chirality_lab * plane.rotation), xi(plane.xi), chiral(!chirality_lab.isZero(0.0)) {
         const Eigen::Matrix3cd r = plane.rotation.cast<Complex>();
         epsilon = r.transpose() * epsilon_lab * r;
+        if (chiral) epsilon += (chirality * chirality).cast<Complex>();
         const double scale = max_abs(epsilon_lab);
         isotropic_epsilon = epsilon_lab.trace() / 3.0;
-        isotropic =
+        isotropic = !chiral &&
             max_abs(epsilon_lab - isotropic_epsilon * Eigen::Matrix3cd::Identity()) <= kIsotropicTolerance * scale;
         lossless = max_abs(epsilon_lab - epsilon_lab.adjoint()) <= kHermitianTolerance * scale;
     }
 };
+
+// The bianisotropic medium's plane-wave equations, written for F = (E, H): (D, B) = M·F with
+// M = [[ε_b, iκ], [−iκ, I]], and N × E = B, N × H = −D, i.e. (D, B) = R(N)·F with R(N) = [[0, −[N×]], [[N×], 0]]
+// (Berreman, JOSA 62, 502 (1972), eqs. 1–6 with his optical-activity tensors ρ = iκ, ρ' = −iκ). With N = (ξ, 0, q):
+// (M − R(ξx̂))·F = q·R(ẑ)·F. The rows of D_z and B_z have no q; they give E_z and H_z from the tangential components.
+using Matrix6cd = Eigen::Matrix<Complex, 6, 6>;
+Matrix6cd chiral_system(const Medium& medium) {
+    const Complex i(0.0, 1.0);
+    Matrix6cd c = Matrix6cd::Zero();
+    c.topLeftCorner<3, 3>() = medium.epsilon;
+    c.topRightCorner<3, 3>() = i * medium.chirality.cast<Complex>();
+    c.bottomLeftCorner<3, 3>() = -i * medium.chirality.cast<Complex>();
+    c.bottomRightCorner<3, 3>().setIdentity();
+    // −R(ξx̂): [ξx̂×] = [[0, 0, 0], [0, 0, −ξ], [0, ξ, 0]], in the D rows +[ξx̂×]H, in the B rows −[ξx̂×]E.
+    c(1, 5) += -medium.xi;
+    c(2, 4) += medium.xi;
+    c(4, 2) -= -medium.xi;
+    c(5, 1) -= medium.xi;
+    return c;
+}
+
+// Tangential (E_x, E_y, H_x, H_y) and normal (E_z, H_z) positions in F.
+constexpr std::array<int, 4> kTangential{0, 1, 3, 4};
+constexpr std::array<int, 2> kNormal{2, 5};
+
+// F_z = −C_zz⁻¹·C_zt·F_t: the normal components that the D_z and B_z rows fix (the elimination of Berreman 1972).
+Eigen::Matrix<Complex, 2, 4> normal_from_tangential(const Matrix6cd& c) {
+    Eigen::Matrix2cd c_zz;
+    Eigen::Matrix<Complex, 2, 4> c_zt;
+    for (int r = 0; r < 2; ++r) {
+        for (int k = 0; k < 2; ++k) c_zz(r, k) = c(kNormal[r], kNormal[k]);
+        for (int k = 0; k < 4; ++k) c_zt(r, k) = c(kNormal[r], kTangential[k]);
+    }
+    return -c_zz.inverse() * c_zt;
+}
+
+// ψ = (E_x, H_y, E_y, −H_x) from F_t = (E_x, E_y, H_x, H_y): ψ = P·F_t.
+Eigen::Matrix4cd psi_from_tangential() {
+    Eigen::Matrix4cd p = Eigen::Matrix4cd::Zero();
+    p(0, 0) = 1.0;
+    p(1, 3) = 1.0;
+    p(2, 1) = 1.0;
+    p(3, 2) = -1.0;
+    return p;
+}
+
+// Berreman's Δ of a chiral medium: the tangential rows give (C_tt + C_tz·F_z/F_t)·F_t = q·R_tt·F_t, where R(ẑ)
+// maps (E_x, E_y, H_x, H_y) to (D_x, D_y, B_x, B_y) = (H_y, −H_x, −E_y, E_x); R_tt is its own inverse.
+Eigen::Matrix4cd chiral_delta_matrix(const Medium& medium) {
+    const Matrix6cd c = chiral_system(medium);
+    const Eigen::Matrix<Complex, 2, 4> normal = normal_from_tangential(c);
+    Eigen::Matrix4cd reduced;
+    for (int r = 0; r < 4; ++r) {
+        for (int k = 0; k < 4; ++k) {
+            reduced(r, k) = c(kTangential[r], kTangential[k]) + c(kTangential[r], kNormal[0]) * normal(0, k) +
+                            c(kTangential[r], kNormal[1]) * normal(1, k);
+        }
+    }
+    Eigen::Matrix4cd r_tt = Eigen::Matrix4cd::Zero();
+    r_tt(0, 3) = 1.0;
+    r_tt(1, 2) = -1.0;
+    r_tt(2, 1) = -1.0;
+    r_tt(3, 0) = 1.0;
+    const Eigen::Matrix4cd p = psi_from_tangential();
+    return p * (r_tt * reduced) * p.transpose();  // P is orthogonal: P⁻¹ = Pᵀ
+}
 
 // Berreman's Δ for the x–z plane of incidence, dψ/dz = i k₀ Δ ψ, ψ = (E_x, H_y, E_y, −H_x) (Berreman,
 // JOSA 62, 502 (1972), with μ = 1 and no optical activity; physics notes §3). Derived from
@@ -116,6 +187,11 @@ Eigen::Matrix4cd delta_matrix(const Eigen::Matrix3cd& e, double xi) {
 // The full fields of a tangential field ψ' (plane frame): E_z = −(ξ H_y + ε₃₁E_x + ε₃₂E_y)/ε₃₃ from
 // (∇ × H)_z = −i k₀ (εE)_z, and H_z = ξ E_y from (∇ × E)_z = i k₀ H_z (the eliminations of Berreman 1972).
 std::pair<Eigen::Vector3cd, Eigen::Vector3cd> fields_from_psi(const Medium& medium, const Eigen::Vector4cd& psi) {
+    if (medium.chiral) {
+        const Eigen::Vector4cd tangential = psi_from_tangential().transpose() * psi;
+        const Eigen::Vector2cd normal = normal_from_tangential(chiral_system(medium)) * tangential;
+        return {Eigen::Vector3cd(tangential[0], tangential[1], normal[0]), Eigen::Vector3cd(tangential[2], tangential[3], normal[1])};
+    }
     const Eigen::Matrix3cd& e = medium.epsilon;
     const Complex ez = -(medium.xi * psi[1] + e(2, 0) * psi[0] + e(2, 1) * psi[2]) / e(2, 2);
     return {Eigen::Vector3cd(psi[0], psi[2], ez), Eigen::Vector3cd(-psi[3], psi[1], medium.xi * psi[2])};
@@ -170,7 +246,7 @@ Matrix42cd null_space_2(const Eigen::Matrix4cd& m) {
 // individual eigenvectors are not; it fails only where a forward and a backward wave meet (q → 0 at grazing
 // incidence, an exceptional point of Δ).
 Spectrum anisotropic_spectrum(const Medium& medium) {
-    const Eigen::Matrix4cd delta = delta_matrix(medium.epsilon, medium.xi);
+    const Eigen::Matrix4cd delta = medium.chiral ? chiral_delta_matrix(medium) : delta_matrix(medium.epsilon, medium.xi);
     const Eigen::ComplexEigenSolver<Eigen::Matrix4cd> solver(delta, false);
     std::array<Complex, 4> q;
     std::array<double, 4> forwardness;  // > 0 forward: Im q when the amplitude varies, else the flux
@@ -386,8 +462,12 @@ Matrix42cd columns(const std::array<PlaneMode, 4>& modes, int first) {
 }  // namespace
 
 std::array<BerremanMode, 4> berreman_modes(const Eigen::Matrix3cd& epsilon, const Eigen::Vector2d& xi) {
+    return berreman_modes(epsilon, Eigen::Matrix3d::Zero(), xi);
+}
+
+std::array<BerremanMode, 4> berreman_modes(const Eigen::Matrix3cd& epsilon, const Eigen::Matrix3d& chirality, const Eigen::Vector2d& xi) {
     const PlaneOfIncidence plane(xi);
-    const Medium medium(epsilon, plane);
+    const Medium medium(epsilon, plane, chirality);
     const auto modes = all_modes(medium, plane, medium_spectrum(medium));
     return {modes[0].mode, modes[1].mode, modes[2].mode, modes[3].mode};
 }
@@ -420,7 +500,7 @@ StackResponse solve_stack(const Eigen::Matrix3cd& ambient, const std::vector<Sta
     Scattering total;  // identity
     Matrix42cd forward_below = columns(ambient_modes, 0), backward_below = columns(ambient_modes, 2);
     for (const StackLayer& layer : layers) {
-        const Medium medium(layer.epsilon, plane);
+        const Medium medium(layer.epsilon, plane, layer.chirality);
         const Spectrum spectrum = medium_spectrum(medium, true);
         total = star(total, interface(forward_below, backward_below, spectrum.forward.basis, spectrum.backward.basis));
         // Across the layer: ψ(z + d) = exp(i k₀ Δ d) ψ(z) restricted to each invariant subspace.

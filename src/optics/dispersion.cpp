@@ -9,13 +9,14 @@
 namespace petroscope {
 namespace {
 
-constexpr std::array<std::pair<DispersionModel::Kind, std::string_view>, 6> kKindNames{{
+constexpr std::array<std::pair<DispersionModel::Kind, std::string_view>, 7> kKindNames{{
     {DispersionModel::Kind::constant, "constant"},
     {DispersionModel::Kind::cauchy, "cauchy"},
     {DispersionModel::Kind::rii_formula_1, "rii-formula-1"},
     {DispersionModel::Kind::rii_formula_2, "rii-formula-2"},
     {DispersionModel::Kind::rii_formula_4, "rii-formula-4"},
     {DispersionModel::Kind::table_nm, "table-nm"},
+    {DispersionModel::Kind::drude, "drude"},
 }};
 
 // refractiveindex.info formulas 1 and 2 (database documentation, "formula" types), λ in µm:
@@ -74,7 +75,7 @@ DispersionModel DispersionModel::parse(std::string_view text) {
     }
     if (!known) {
         throw InputError("unknown dispersion model " + quote_input(words[0]) +
-                         " (expected constant, cauchy, rii-formula-1, rii-formula-2, rii-formula-4 or table-nm)");
+                         " (expected constant, cauchy, rii-formula-1, rii-formula-2, rii-formula-4, table-nm or drude)");
     }
     const std::size_t count = words.size() - 1;
     if (model.kind_ == Kind::table_nm) {
@@ -112,6 +113,9 @@ DispersionModel DispersionModel::parse(std::string_view text) {
         case Kind::rii_formula_4:
             if (count < 9 || count % 2 == 0) throw model_error(words[0], "9 coefficients, then pairs (an odd count >= 9)");
             break;
+        case Kind::drude:
+            if (count < 2 || count % 2 != 0) throw model_error(words[0], "pairs of coefficients K1 L1 [K2 L2 …]");
+            break;
         case Kind::table_nm:
             break;
     }
@@ -146,6 +150,14 @@ double DispersionModel::operator()(double wavelength_nm) const {
                 }
             }
             return c.back();
+        }
+        case Kind::drude: {
+            // Drude's rotatory dispersion: Σᵢ Kᵢ/(λ² − Lᵢ²), λ and Lᵢ in µm (Drude, Lehrbuch der Optik, 1900;
+            // Condon, Rev. Mod. Phys. 9, 432 (1937)).
+            const double l2 = lambda_um * lambda_um;
+            double value = 0.0;
+            for (std::size_t i = 0; i + 1 < c.size(); i += 2) value += c[i] / (l2 - c[i + 1] * c[i + 1]);
+            return value;
         }
     }
     return c[0];

@@ -284,13 +284,36 @@ SlabTransfer slab_transfer(const SlabModes& modes, const TangentialWavevector& d
     return transfer;
 }
 
+Eigen::Vector2d gyration_coupling(const std::array<SlabMode, 2>& forward, const Eigen::Vector2d& xi, const Eigen::Matrix3d& gyration) {
+    const Eigen::Vector3d mean_normal(xi.x(), xi.y(), 0.5 * (forward[0].q + forward[1].q));
+    const double tau = (gyration * mean_normal).dot(forward[1].e_field.cross(forward[0].e_field));
+    const double flux_fast = forward[0].e_field.cross(forward[0].h_field).z();
+    const double flux_slow = forward[1].e_field.cross(forward[1].h_field).z();
+    return {0.5 * tau / flux_fast, 0.5 * tau / flux_slow};
+}
+
+Eigen::Matrix2cd slab_propagation(const SlabTransfer& transfer, double k0_thickness) {
+    Eigen::Matrix2cd propagation = Eigen::Matrix2cd::Zero();
+    const Eigen::Vector2d& c = transfer.gyration_coupling;
+    if (c.isZero(0.0)) {
+        propagation(0, 0) = std::polar(1.0, k0_thickness * transfer.q[0]);
+        propagation(1, 1) = std::polar(1.0, k0_thickness * transfer.q[1]);
+        return propagation;
+    }
+    const double half_splitting = 0.5 * k0_thickness * (transfer.q[0] - transfer.q[1]);
+    const double omega = std::sqrt(half_splitting * half_splitting + k0_thickness * k0_thickness * c[0] * c[1]);
+    const double sinc = omega > 1e-6 ? std::sin(omega) / omega : 1.0 - omega * omega / 6.0;
+    const std::complex<double> i(0.0, 1.0);
+    propagation << std::cos(omega) + i * sinc * half_splitting, -sinc * k0_thickness * c[0],
+                   sinc * k0_thickness * c[1], std::cos(omega) - i * sinc * half_splitting;
+    return std::polar(1.0, 0.5 * k0_thickness * (transfer.q[0] + transfer.q[1])) * propagation;
+}
+
 Eigen::Matrix2cd slab_jones(const SlabTransfer& transfer, double wavelength_nm, double thickness_um) {
     if (!transfer.propagating) return Eigen::Matrix2cd::Zero();
     const double k0_thickness = 2.0 * std::numbers::pi * thickness_um * 1e3 / wavelength_nm;
-    Eigen::Matrix2cd propagation = Eigen::Matrix2cd::Zero();
-    propagation(0, 0) = std::polar(1.0, k0_thickness * transfer.q[0]);
-    propagation(1, 1) = std::polar(1.0, k0_thickness * transfer.q[1]);
-    return transfer.exit.cast<std::complex<double>>() * propagation * transfer.entry.cast<std::complex<double>>();
+    return transfer.exit.cast<std::complex<double>>() * slab_propagation(transfer, k0_thickness) *
+           transfer.entry.cast<std::complex<double>>();
 }
 
 }  // namespace petroscope

@@ -69,6 +69,9 @@ TEST_F(Cli, MineralsShowJson) {
         EXPECT_TRUE(quartz.contains(key)) << key;
     }
     EXPECT_EQ(quartz["name"], "quartz");
+    ASSERT_EQ(quartz["optical_activity"].size(), 2u);
+    EXPECT_EQ(quartz["optical_activity"][1]["key"], "rotatory_power_axis");
+    EXPECT_NEAR(quartz["optical_activity"][1]["deg_per_mm_right_handed"].get<double>(), 21.72, 0.005);
     EXPECT_EQ(quartz["sign"], "+");
     EXPECT_EQ(quartz["two_v_deg"].get<double>(), 0.0);
     EXPECT_EQ(quartz["wavelength_nm"].get<double>(), 589.3);
@@ -237,6 +240,29 @@ TEST_F(Cli, ConoscopeExactSpectrumSolvesEveryWavelengthAndSaysSo) {
     EXPECT_EQ(spectrum("exact"), "every wavelength solved (--exact-spectrum)");
 }
 
+TEST_F(Cli, ConoscopeOfQuartzUsesItsOpticalActivityAndHandedness) {
+    // The sidecar names the form and its rotatory power along Z (c) at 589.3 nm, 21.72 deg/mm, positive for the
+    // right-handed form; an unknown handedness, and the activity in a mounted section, are refused.
+    const auto sidecar = [this](const std::string& extra, const char* name) {
+        const fs::path image = out() / (std::string(name) + ".exr");
+        const CommandResult run = petroscope("conoscope --size 64 --wavelength 589.3nm " + extra + " -o " + quoted(image));
+        EXPECT_EQ(run.exit_code, 0) << run.err;
+        return std::pair{nlohmann::json::parse(read_text(out() / (std::string(name) + ".exr.json"))), run};
+    };
+    const auto [right, right_run] = sidecar("--mineral quartz --thickness 1mm", "right");
+    EXPECT_EQ(right["optical_activity"]["handedness"], "right");
+    EXPECT_NEAR(right["optical_activity"]["rotatory_power_deg_per_mm_xyz_at_reference"][2].get<double>(), 21.72, 0.005);
+    EXPECT_EQ(right["spectrum"], "every wavelength solved (optically active crystal)");
+    const auto [left, left_run] = sidecar("--mineral quartz --thickness 1mm --handedness left", "left");
+    EXPECT_EQ(left["optical_activity"]["handedness"], "left");
+    EXPECT_NEAR(left["optical_activity"]["rotatory_power_deg_per_mm_xyz_at_reference"][2].get<double>(), -21.72, 0.005);
+    const auto [calcite, calcite_run] = sidecar("--mineral calcite --handedness left", "calcite");
+    EXPECT_TRUE(calcite["optical_activity"].is_null());
+    EXPECT_NE(calcite_run.err.find("not optically active"), std::string::npos) << calcite_run.err;
+    const std::string png = " -o " + quoted(out() / "x.png");
+    expect_rejected("conoscope --mineral quartz --size 64 --handedness sideways" + png, {"--handedness", "'sideways'", "expected right or left"});
+    expect_rejected("conoscope --mineral quartz --size 64 --stack" + png, {"optical activity", "immersed"});
+}
 
 // ---- petroscope interface and verify (issue 3) ----
 

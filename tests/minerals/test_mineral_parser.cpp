@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -331,6 +332,52 @@ TEST(MineralParser, OtherValueErrors) {
         EXPECT_CONTAINS(reference, "t.txt:10:");
         EXPECT_CONTAINS(reference, "reference_wavelength_nm");
     }
+}
+
+// A minimal uniaxial record, 7 lines, optionally active.
+std::vector<std::string> uniaxial_lines() {
+    return {"name: quartzite", "system: trigonal", "class: uniaxial", "n_o: constant 1.544", "n_o.source: o",
+            "n_e: constant 1.553", "n_e.source: e"};
+}
+
+std::vector<std::string> active_uniaxial_lines() {
+    auto lines = uniaxial_lines();
+    for (const char* line : {"rotatory_power_axis: drude 7.16 0.13",   // 8
+                             "rotatory_power_axis.source: along",      // 9
+                             "rotatory_power_normal: constant -10.9",  // 10
+                             "rotatory_power_normal.source: across"})  // 11
+        lines.push_back(line);
+    return lines;
+}
+
+TEST(MineralParser, RotatoryPowersOfAUniaxialCrystal) {
+    const Mineral active = parse_mineral(join(active_uniaxial_lines()), "t.txt");
+    ASSERT_TRUE(active.optically_active());
+    const Eigen::Vector3d rho = active.principal_rotatory_power(589.3);
+    const double deg_per_mm = std::numbers::pi / 180.0 * 1e-3;
+    EXPECT_NEAR(rho[2], 7.16 / (0.5893 * 0.5893 - 0.0169) * deg_per_mm, 1e-15);
+    EXPECT_NEAR(rho[0], -10.9 * deg_per_mm, 1e-18);
+    EXPECT_EQ(rho[0], rho[1]);
+    EXPECT_EQ(active.rotatory_powers[1].source, "along");
+    EXPECT_FALSE(parse_mineral(join(uniaxial_lines()), "t.txt").optically_active());
+    EXPECT_TRUE(parse_mineral(join(uniaxial_lines()), "t.txt").principal_rotatory_power(589.3).isZero(0.0));
+}
+
+TEST(MineralParser, BadRotatoryPowersAreRefusedWithTheLineAndReason) {
+    // One component alone, a missing source, a bad model, out of range, negative along the axis (the record gives
+    // the right-handed form), and on an isotropic or biaxial record the uniaxial keys are unknown.
+    EXPECT_CONTAINS(parse_error(join(without(without(active_uniaxial_lines(), 11), 10))), "rotatory_power_normal is missing");
+    EXPECT_CONTAINS(parse_error(join(without(active_uniaxial_lines(), 9))), "missing key 'rotatory_power_axis.source'");
+    const std::string model = parse_error(join(with(active_uniaxial_lines(), 10, "rotatory_power_normal: drude 1")));
+    EXPECT_CONTAINS(model, "t.txt:10: rotatory_power_normal:");
+    const std::string range = parse_error(join(with(active_uniaxial_lines(), 10, "rotatory_power_normal: constant 2170")));
+    EXPECT_CONTAINS(range, "t.txt:10:");
+    EXPECT_CONTAINS(range, "within");
+    const std::string sign = parse_error(join(with(active_uniaxial_lines(), 8, "rotatory_power_axis: constant -21.7")));
+    EXPECT_CONTAINS(sign, "t.txt:8:");
+    EXPECT_CONTAINS(sign, "right-handed");
+    EXPECT_CONTAINS(parse_error(join(plus(plus(biaxial_lines(), "rotatory_power_axis: constant 1"), "rotatory_power_axis.source: s"))),
+                    "unknown key 'rotatory_power_axis'");
 }
 
 }  // namespace

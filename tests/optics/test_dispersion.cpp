@@ -110,10 +110,19 @@ TEST(Dispersion, TableInterpolatesLinearlyAndExtrapolatesConstant) {
     EXPECT_NEAR(DispersionModel::parse("table-nm 400:0.001 700:0.004")(500.0), 0.002, 1e-15);
 }
 
+TEST(Dispersion, DrudeRotatoryDispersionSumsItsTerms) {
+    // Σ Kᵢ/(λ² − Lᵢ²) with λ and Lᵢ in µm.
+    const DispersionModel one = DispersionModel::parse("drude 7.16 0.13");
+    EXPECT_NEAR(one(589.3), 7.16 / (0.5893 * 0.5893 - 0.13 * 0.13), 1e-13);
+    const DispersionModel two = DispersionModel::parse("drude 7.16 0.13 -0.5 0.2");
+    EXPECT_NEAR(two(500.0), 7.16 / (0.25 - 0.0169) - 0.5 / (0.25 - 0.04), 1e-13);
+    EXPECT_EQ(DispersionModel::parse(two.describe()).coefficients(), two.coefficients());
+}
+
 TEST(Dispersion, UnknownModelListsTheValidOnes) {
     const std::string message = parse_error("sellmeier 1 2 3");
     EXPECT_NE(message.find("'sellmeier'"), std::string::npos) << message;
-    for (const char* name : {"constant", "cauchy", "rii-formula-1", "rii-formula-2", "rii-formula-4", "table-nm"}) {
+    for (const char* name : {"constant", "cauchy", "rii-formula-1", "rii-formula-2", "rii-formula-4", "table-nm", "drude"}) {
         EXPECT_NE(message.find(name), std::string::npos) << name << " missing from: " << message;
     }
     EXPECT_FALSE(parse_error("").empty());
@@ -135,6 +144,8 @@ TEST(Dispersion, WrongCoefficientCountsAreErrorsNamingTheModel) {
         {"rii-formula-4 1 0 0 0 1 0 0 0 1 1", "rii-formula-4"},
         {"table-nm 500:1.5", "table-nm"},
         {"table-nm", "table-nm"},
+        {"drude 7.16", "drude"},
+        {"drude 7.16 0.13 1.0", "drude"},
     };
     for (const auto& [text, model] : cases) {
         SCOPED_TRACE(text);

@@ -55,7 +55,7 @@ TEST(SceneFile, ThePapersSceneReads) {
 }
 
 TEST(SceneFile, AGenericPolyhedronWithItsOrientation) {
-    const Scene scene = read("cube.json", "{" + kBox + ", " + kCamera + R"(, "crystals": [{"mineral": "quartz", )" + kCube +
+    const Scene scene = read("cube.json", "{" + kBox + ", " + kCamera + R"(, "crystals": [{"mineral": "sapphire", )" + kCube +
                                               R"(, "faces": [[0,1,3,2],[4,5,7,6],[0,1,5,4],[2,3,7,6],[0,2,6,4],[1,3,7,5]], "euler_zyz_deg": [0, 90, 0]}]})");
     ASSERT_EQ(scene.crystals.size(), 1u);
     EXPECT_EQ(scene.crystals[0].shape.faces.size(), 6u);
@@ -65,12 +65,15 @@ TEST(SceneFile, AGenericPolyhedronWithItsOrientation) {
 TEST(SceneFile, BadScenesNameTheJsonPath) {
     const std::string faces5 = R"(, "faces": [[0,1,3,2],[4,5,7,6],[0,1,5,4],[2,3,7,6],[0,2,6,4]]})";
     expect_error("unknown_key.json", "{" + kBox + ", " + kCamera + R"(, "crystal": []})", {"unknown_key.json", "unknown key 'crystal'", "valid keys"});
-    expect_error("open.json", "{" + kBox + ", " + kCamera + R"(, "crystals": [{"mineral": "quartz", )" + kCube + faces5 + "]}",
+    expect_error("open.json", "{" + kBox + ", " + kCamera + R"(, "crystals": [{"mineral": "sapphire", )" + kCube + faces5 + "]}",
                  {"crystals[0]", "not closed"});
     expect_error("concave.json",
                  "{" + kBox + ", " + kCamera +
-                     R"(, "crystals": [{"mineral": "quartz", "vertices_mm": [[0,0,10],[10,0,10],[0,10,10],[10,10,10],[0,0,20],[10,0,20],[0,10,20],[4,4,12]], "faces": [[0,1,3,2],[4,5,7,6],[0,1,5,4],[2,3,7,6],[0,2,6,4],[1,3,7,5]]}]})",
+                     R"(, "crystals": [{"mineral": "sapphire", "vertices_mm": [[0,0,10],[10,0,10],[0,10,10],[10,10,10],[0,0,20],[10,0,20],[0,10,20],[4,4,12]], "faces": [[0,1,3,2],[4,5,7,6],[0,1,5,4],[2,3,7,6],[0,2,6,4],[1,3,7,5]]}]})",
                  {"crystals[0]"});
+    expect_error("active.json", "{" + kBox + ", " + kCamera + R"(, "crystals": [{"mineral": "quartz", )" + kCube +
+                                     R"(, "faces": [[0,1,3,2],[4,5,7,6],[0,1,5,4],[2,3,7,6],[0,2,6,4],[1,3,7,5]]}]})",
+                 {"crystals[0].mineral", "optically active"});
     expect_error("through_wall.json",
                  "{" + kBox + ", " + kCamera + R"(, "crystals": [{"mineral": "calcite", "calcite_rhomb": {"edges_mm": [40, 30, 30]}, "on_bottom": {"center_mm": [95, 0]}}]})",
                  {"crystals[0]", "crosses a wall"});

@@ -8,6 +8,7 @@
 #include "petroscope/core/progress.hpp"
 #include "petroscope/microscope/conoscope.hpp"
 #include "petroscope/minerals/mineral_catalog.hpp"
+#include "petroscope/optics/gyration.hpp"
 
 #include <optional>
 #include <string>
@@ -41,6 +42,8 @@ struct ConoscopeRequest {
     std::optional<PlateRequest> plate;
     /// White light in an immersed slab: modes at spectral nodes, interpolated (default), or at every wavelength.
     SpectrumSampling spectrum = SpectrumSampling::interpolated;
+    /// Which enantiomorph of an optically active mineral (quartz); no effect on an inactive one.
+    Handedness handedness = Handedness::right;
 };
 
 /// A request checked and resolved against the catalog, ready to render. It refers to the catalog's
@@ -50,6 +53,7 @@ struct ConoscopePlan {
     const Mineral* mineral = nullptr;
     std::optional<Cut> cut;  // the cut used; none with Euler angles
     Light light;
+    std::optional<Handedness> handedness;  // of an optically active mineral; none for an inactive one
     /// Where the optic axes are measured: the light's wavelength, in white light 555 nm (the peak of the
     /// photopic luminous efficiency, CIE 1924).
     double axes_wavelength_nm = 555.0;

@@ -50,6 +50,9 @@ struct ConoscopeSettings {
     std::optional<SectionMounting> mounting;
     /// With `mounting`: the coherent 4×4 solution (every multiple reflection) instead of single pass.
     bool exact = false;
+    /// Natural optical activity: the crystal's gyration tensor in its indicatrix frame; empty for an inactive
+    /// crystal. An active crystal solves every wavelength (no spectral nodes) and takes no mounting.
+    GyrationFunction gyration;
 
     /// Checks every field; throws InputError naming the setting and the accepted range.
     void validate() const;
@@ -61,7 +64,8 @@ struct ConoscopeSettings {
 Eigen::Vector2d conoscope_tangential_wavevector(const ConoscopeSettings& settings, int column, int row);
 
 /// Whether a figure of `settings` is interpolated from spectral nodes: SpectrumSampling::interpolated, an
-/// immersed slab (no mounting) and at least 2·kSpectralNodeCount distinct wavelengths.
+/// immersed slab (no mounting), an optically inactive crystal and at least 2·kSpectralNodeCount distinct
+/// wavelengths.
 bool interpolates_spectrum(const ConoscopeSettings& settings);
 
 /// Transmission spectrum of one image point: intensity after the analyzer relative to the incident
@@ -87,7 +91,8 @@ class ConoscopeEvaluator;
 }
 
 /// The terms of many image points at every wavelength of a figure's settings (settings.thickness_um is
-/// not used; a plate or a mounting is refused with InputError).
+/// not used; a plate, a mounting or optical activity is refused with InputError: the thickness dependence of
+/// an active crystal is not of this form).
 class ConoscopeTerms {
 public:
     ConoscopeTerms(const ConoscopeSettings& settings, const PrincipalIndexFunction& principal_n);

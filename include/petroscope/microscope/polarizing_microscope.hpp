@@ -5,6 +5,7 @@
 // incoherent with each other. Frames and angle senses: docs/conventions.md; the model: docs/orthoscope.md.
 #include "petroscope/microscope/layer_stack.hpp"
 #include "petroscope/minerals/mineral.hpp"
+#include "petroscope/optics/gyration.hpp"
 #include "petroscope/optics/medium.hpp"
 
 #include <Eigen/Core>
@@ -18,6 +19,8 @@ namespace petroscope {
 
 /// Principal indices (or extinction coefficients) along the indicatrix axes X, Y, Z at a wavelength in nm.
 using PrincipalIndexFunction = std::function<Eigen::Vector3d(double wavelength_nm)>;
+/// A crystal's gyration tensor g in its indicatrix frame (X, Y, Z) at a wavelength in nm (optics/gyration.hpp).
+using GyrationFunction = std::function<Eigen::Matrix3d(double wavelength_nm)>;
 
 /// A homogeneous medium over all wavelengths: principal n and κ as functions of λ and the indicatrix axes
 /// (columns, lab frame). At one wavelength it is an OpticalMedium (optics/medium.hpp).
@@ -32,6 +35,10 @@ struct DispersiveMedium {
     OpticalMedium at(double wavelength_nm) const;
     Eigen::Matrix3cd permittivity(double wavelength_nm) const { return at(wavelength_nm).permittivity(); }
 };
+
+/// The gyration tensor of `mineral`'s `handedness` form in its indicatrix frame (optics/gyration.hpp); empty for
+/// an inactive mineral. The mineral must outlive the function.
+GyrationFunction mineral_gyration(const Mineral& mineral, Handedness handedness);
 
 /// Glass and cement around the crystal, from the condenser side up (typical thin section: 1 mm slide,
 /// a few µm of balsam on each face of the rock slice, a #1.5 cover glass of 170 µm).

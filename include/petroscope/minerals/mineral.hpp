@@ -22,6 +22,14 @@ struct PrincipalAxis {
     std::string kappa_source;
 };
 
+/// One principal component of natural optical activity: the rotatory power (°/mm, positive dextrorotatory) of
+/// the right-handed form for waves along a principal direction, and where the numbers come from.
+struct RotatoryPower {
+    std::string key;  // "rotatory_power", "rotatory_power_axis", "rotatory_power_normal" as in the file
+    DispersionModel deg_per_mm;
+    std::string source;
+};
+
 struct Mineral {
     std::string name;
     std::vector<std::string> aliases;
@@ -29,6 +37,7 @@ struct Mineral {
     OpticalClass optical_class = OpticalClass::isotropic;
     double reference_wavelength_nm = 589.3;
     std::vector<PrincipalAxis> axes;  // isotropic: {n}; uniaxial: {o, e}; biaxial: {alpha, beta, gamma}
+    std::vector<RotatoryPower> rotatory_powers;  // empty: inactive; isotropic: {all directions}; uniaxial: {normal, axis}
     std::string file;                 // where the record was read from
 
     /// Indices along the indicatrix axes X, Y, Z (uniaxial: ω, ω, ε; isotropic: n, n, n).
@@ -36,6 +45,9 @@ struct Mineral {
     /// Extinction coefficients κ along X, Y, Z (zero where the file gives none).
     Eigen::Vector3d principal_kappa(double wavelength_nm) const;
     bool absorbing() const;
+    bool optically_active() const { return !rotatory_powers.empty(); }
+    /// Rotatory power (rad/µm) of the right-handed form for waves along X, Y, Z; zero for an inactive mineral.
+    Eigen::Vector3d principal_rotatory_power(double wavelength_nm) const;
     /// The axes whose formula is used outside its stated validity range at some of `wavelengths_nm`,
     /// as readable warnings.
     std::vector<std::string> range_warnings(const std::vector<double>& wavelengths_nm) const;

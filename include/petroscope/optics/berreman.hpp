@@ -50,10 +50,19 @@ struct BerremanMode {
 /// ρ̂ = ξ/|ξ| (x̂ at ξ = 0), ŝ = ẑ × ρ̂.
 std::array<BerremanMode, 4> berreman_modes(const Eigen::Matrix3cd& epsilon, const Eigen::Vector2d& xi);
 
-/// A plane-parallel layer of relative permittivity ε (lab frame) and thickness in µm.
+/// The same for an optically active medium: Landau's relation D = εE + i(g·N) × E written as the bianisotropic
+/// D = (ε + κ²)E + iκH, B = H − iκE with the chirality tensor κ (real symmetric, lab frame; optics/gyration.hpp),
+/// whose plane waves are Landau's exactly and whose 6×6 constitutive matrix is Hermitian for a Hermitian ε, so
+/// that the flux is conserved across interfaces. H is the field of that relation (B = μ₀H in the inactive
+/// medium); the tangential E and H are continuous. κ = 0 is berreman_modes(epsilon, xi).
+std::array<BerremanMode, 4> berreman_modes(const Eigen::Matrix3cd& epsilon, const Eigen::Matrix3d& chirality, const Eigen::Vector2d& xi);
+
+/// A plane-parallel layer of relative permittivity ε (lab frame), chirality κ (zero: inactive; see berreman_modes)
+/// and thickness in µm.
 struct StackLayer {
     Eigen::Matrix3cd epsilon;
     double thickness_um = 0.0;
+    Eigen::Matrix3d chirality = Eigen::Matrix3d::Zero();
 };
 
 /// The coherent response of ambient | layers | substrate (semi-infinite ambient and substrate, any ε

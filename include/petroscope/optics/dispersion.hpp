@@ -1,6 +1,6 @@
 #pragma once
-// Refractive index (or extinction coefficient) as a function of wavelength: the dispersion models of
-// minerals/README.md.
+// Refractive index (or extinction coefficient, or rotatory power) as a function of wavelength: the dispersion
+// models of minerals/README.md.
 #include <optional>
 #include <string>
 #include <string_view>
@@ -10,7 +10,7 @@ namespace petroscope {
 
 class DispersionModel {
 public:
-    enum class Kind { constant, cauchy, rii_formula_1, rii_formula_2, rii_formula_4, table_nm };
+    enum class Kind { constant, cauchy, rii_formula_1, rii_formula_2, rii_formula_4, table_nm, drude };
 
     /// Parses "MODEL P1 P2 …" (minerals/README.md). Throws InputError with a message that names the
     /// model and what was expected; the caller adds the file and line.

@@ -79,12 +79,27 @@ struct SlabTransfer {
     Eigen::Vector2d q = Eigen::Vector2d::Zero();  // forward q of the fast and slow modes
     Eigen::Matrix2d entry = Eigen::Matrix2d::Zero();
     Eigen::Matrix2d exit = Eigen::Matrix2d::Zero();
+    /// Optical activity (gyration_coupling): the forward amplitudes a = (fast, slow) obey da/dz = i·k₀·Q·a with
+    /// Q = [[q_fast, i·c₀], [−i·c₁, q_slow]]; zero for an inactive crystal (Q diagonal).
+    Eigen::Vector2d gyration_coupling = Eigen::Vector2d::Zero();
     bool propagating = true;
 };
 SlabTransfer slab_transfer(const SlabModes& modes, const TangentialWavevector& direction, double n_entrance,
                            double n_exit);
 
-/// The slab's Jones matrix in the (s, p) basis: exit · diag(exp(i·k₀·q_m·d)) · entry.
+/// The coupling (c₀, c₁) of SlabTransfer that the gyration tensor g (lab frame, optics/gyration.hpp) puts between
+/// the two forward modes of ξ: first-order coupled-mode theory (Yariv, IEEE J. Quantum Electron. 9, 919 (1973))
+/// for the perturbation i(g·N)×E of D (Landau & Lifshitz vol. 8 §101), c₀ = τ/(2f_fast), c₁ = τ/(2f_slow) with τ = (g·N̄)·(E_slow × E_fast), fₘ = (Eₘ × Hₘ)_z and
+/// N̄ = (ξ, (q_fast + q_slow)/2). Exact along the optic axis; elsewhere its error in q is of order g², below
+/// 1e-9 for quartz (docs/theory.md, "Optical activity").
+Eigen::Vector2d gyration_coupling(const std::array<SlabMode, 2>& forward, const Eigen::Vector2d& xi, const Eigen::Matrix3d& gyration);
+
+/// The propagation of the forward amplitudes across the slab, exp(i·k₀d·Q): diagonal, exp(i·k₀d·q_m), for an
+/// inactive crystal; otherwise e^{iφ̄}(cos Ω·I + i·(sin Ω/Ω)·k₀d·(Q − q̄I)), φ̄ = k₀d·q̄, q̄ the mean of the q,
+/// Ω = k₀d·√(((q_fast − q_slow)/2)² + c₀c₁) (the exponential of a 2×2 matrix from its eigenvalues).
+Eigen::Matrix2cd slab_propagation(const SlabTransfer& transfer, double k0_thickness);
+
+/// The slab's Jones matrix in the (s, p) basis: exit · slab_propagation · entry.
 Eigen::Matrix2cd slab_jones(const SlabTransfer& transfer, double wavelength_nm, double thickness_um);
 
 }  // namespace petroscope

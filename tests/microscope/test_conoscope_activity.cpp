@@ -1,0 +1,182 @@
+// The conoscope with optical activity: quartz's centre between crossed polars, the sense of rotation, a thin
+// section's figure (unchanged by activity beyond 1e-3), a zero gyration (today's figure to 1e-12), and the
+// vectorised kernel against the reference path for random active crystals, with and without a plate.
+#include "conoscope_evaluator.hpp"
+#include "conoscope_fixtures.hpp"
+
+#include "petroscope/microscope/polarizing_microscope.hpp"
+#include "petroscope/core/error.hpp"
+#include "petroscope/io/data_files.hpp"
+#include "petroscope/spectral/colorimetry.hpp"
+#include "petroscope/spectral/wavelength_grid.hpp"
+
+#include "support/random_crystals.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace petroscope {
+namespace {
+
+const Mineral& quartz() { return testing::repository_minerals().find("quartz"); }
+
+// Monochromatic 1 mm basal plate of quartz (optic axis along the microscope), 65 px so that the middle pixel is ξ = 0.
+ConoscopeSettings basal_quartz(Handedness handedness, double thickness_um = 1000.0) {
+    ConoscopeSettings settings = testing::figure_settings(quartz(), Cut::optic_axis, thickness_um, 65, 589.3);
+    settings.gyration = mineral_gyration(quartz(), handedness);
+    return settings;
+}
+
+double centre(const ConoscopeSettings& settings) {
+    return render_conoscope(settings, testing::indices_of(quartz()), nullptr).at(32, 32, 0);
+}
+
+double rotation_rad(double thickness_um) { return quartz().principal_rotatory_power(589.3)[2] * thickness_um; }
+
+TEST(ConoscopeActivity, TheCentreOfA1mmQuartzPlateIsSinSquaredOfTheRotationTimesTheFaces) {
+    // Crossed polars, 589.3 nm: sin²(ρd)·T with ρd = 21.72° (the record's formula: 21.722°) and T the normal-
+    // incidence transmission of the two faces, (4n_s·n_o/(n_s + n_o)²)².
+    const double n_o = quartz().principal_n(589.3)[0];
+    const double n_s = ConoscopeSettings{}.surround_n;
+    const double faces = std::pow(4.0 * n_s * n_o / std::pow(n_s + n_o, 2), 2);
+    const double rotation = rotation_rad(1000.0);
+    EXPECT_NEAR(rotation * 180.0 / std::numbers::pi, 21.72, 0.005);
+    for (const Handedness handedness : {Handedness::right, Handedness::left}) {
+        const double expected = std::pow(std::sin(rotation), 2) * faces;
+        EXPECT_NEAR(centre(basal_quartz(handedness)), expected, 1e-7 * expected) << handedness_name(handedness);
+    }
+    // Without the activity the centre is dark.
+    ConoscopeSettings inactive = basal_quartz(Handedness::right);
+    inactive.gyration = {};
+    EXPECT_LT(centre(inactive), 1e-20);
+}
+
+TEST(ConoscopeActivity, TheAnalyzerTurnedWithThePlaneExtinguishesTheCentre) {
+    // Right quartz turns the plane clockwise for the observer (toward negative azimuths, docs/conventions.md):
+    // the analyzer at 90° − ρd restores the extinction, at 90° + ρd it does not; the left form the other way.
+    const double rotation_deg = rotation_rad(1000.0) * 180.0 / std::numbers::pi;
+    for (const Handedness handedness : {Handedness::right, Handedness::left}) {
+        const double sense = handedness == Handedness::right ? -1.0 : 1.0;
+        ConoscopeSettings settings = basal_quartz(handedness);
+        settings.analyzer_deg = 90.0 + sense * rotation_deg;
+        EXPECT_LT(centre(settings), 1e-12) << handedness_name(handedness);
+        settings.analyzer_deg = 90.0 - sense * rotation_deg;
+        EXPECT_GT(centre(settings), 0.4) << handedness_name(handedness);
+    }
+}
+
+// White-light XYZ figure of quartz, 30 µm, every wavelength solved.
+Image thin_section_figure(Cut cut, bool active) {
+    ConoscopeSettings settings = testing::figure_settings(quartz(), cut, 30.0, 64);
+    settings.wavelengths_nm = WavelengthGrid{380.0, 780.0, 5.0}.wavelengths_nm();
+    settings.spectrum = SpectrumSampling::exact;
+    if (active) settings.gyration = mineral_gyration(quartz(), Handedness::right);
+    const SpectralIntegrator integrator(settings.wavelengths_nm, load_cie_1931_observer(), load_light_source("D65"));
+    return render_conoscope(settings, testing::indices_of(quartz()), &integrator);
+}
+
+TEST(ConoscopeActivity, InAThinSectionTheActivityChangesTheFigureByLessThan1e3) {
+    // 30 µm turns the plane by 0.65°: in white light the figure (XYZ, Y = 1 for a perfect transmitter) changes
+    // by less than 1e-3 anywhere, and far from the axis by far less.
+    for (const Cut cut : {Cut::optic_axis, Cut::optic_normal}) {
+        const Image active = thin_section_figure(cut, true), inactive = thin_section_figure(cut, false);
+        double worst = 0.0;
+        for (std::size_t i = 0; i < active.pixels.size(); ++i) worst = std::max(worst, double(std::abs(active.pixels[i] - inactive.pixels[i])));
+        std::printf("30 um quartz (%s): largest change from the activity %.1e\n", cut == Cut::optic_axis ? "optic axis" : "optic normal", worst);
+        EXPECT_LT(worst, 1e-3);
+        EXPECT_GT(worst, 0.0);
+    }
+}
+
+TEST(ConoscopeActivity, AZeroGyrationReproducesTheInactiveFigure) {
+    // The active code path with g = 0 against the inactive one, monochromatic and at every wavelength of a white
+    // spectrum, over a grid of directions: the same transmission to 1e-12 (it is unity-free rounding only).
+    for (const bool white : {false, true}) {
+        ConoscopeSettings settings = testing::figure_settings(quartz(), Cut::optic_axis, 300.0, 64);
+        settings.polarizer_deg = 10.0;
+        settings.analyzer_deg = 95.0;
+        if (white) {
+            settings.wavelengths_nm = WavelengthGrid{380.0, 780.0, 5.0}.wavelengths_nm();
+            settings.spectrum = SpectrumSampling::exact;
+        }
+        const detail::ConoscopeEvaluator inactive(settings, testing::indices_of(quartz()));
+        settings.gyration = [](double) { return Eigen::Matrix3d::Zero().eval(); };
+        const detail::ConoscopeEvaluator zero(settings, testing::indices_of(quartz()));
+        const std::size_t count = settings.wavelengths_nm.size();
+        std::vector<double> plus(count), minus(count), zero_plus(count), zero_minus(count);
+        detail::SpectralScratch scratch, zero_scratch;
+        double worst = 0.0;
+        for (double x = -0.8; x <= 0.8; x += 0.1) {
+            for (double y = 0.0; y <= 0.8; y += 0.1) {
+                inactive.spectral_pair({x, y}, scratch, false, plus.data(), minus.data());
+                zero.spectral_pair({x, y}, zero_scratch, false, zero_plus.data(), zero_minus.data());
+                for (std::size_t w = 0; w < count; ++w) worst = std::max({worst, std::abs(plus[w] - zero_plus[w]), std::abs(minus[w] - zero_minus[w])});
+            }
+        }
+        EXPECT_LT(worst, 1e-12) << (white ? "white" : "monochromatic");
+    }
+}
+
+TEST(ConoscopeActivity, TheKernelMatchesTheReferencePathForRandomActiveCrystals) {
+    // Random crystals with a random symmetric gyration tensor 10–100 times quartz's (so that the coupling is
+    // strong everywhere), 10–32 µm, random polars, analyzer in or out, a gypsum plate in a third of the cases.
+    std::mt19937_64 rng(191);
+    std::uniform_real_distribution<double> unit(0.0, 1.0), symmetric(-1.0, 1.0);
+    const Mineral& gypsum = testing::repository_minerals().find("gypsum");
+    double worst_spectral = 0.0, worst_batch = 0.0;
+    for (int crystal_case = 0; crystal_case < 60; ++crystal_case) {
+        const Indicatrix indicatrix = crystal_case % 2 == 0 ? testing::random_uniaxial(rng) : testing::random_biaxial(rng);
+        Eigen::Matrix3d g;
+        for (int i = 0; i < 3; ++i) {
+            for (int j = i; j < 3; ++j) g(i, j) = g(j, i) = std::pow(10.0, -3.5 + unit(rng)) * symmetric(rng);
+        }
+        ConoscopeSettings settings;
+        settings.numerical_aperture = 0.95;
+        settings.thickness_um = std::pow(10.0, 0.5 * unit(rng) + 1.0);  // 10 … 32 µm: phases where rounding stays below 1e-13
+        settings.polarizer_deg = 360.0 * unit(rng);
+        settings.analyzer_deg = settings.polarizer_deg + 90.0 + 20.0 * (unit(rng) - 0.5);
+        settings.analyzer_in = crystal_case % 4 != 0;
+        settings.crystal_axes = indicatrix.axes;
+        if (crystal_case % 3 == 0) settings.plate = make_accessory_plate(PlateKind::gypsum, gypsum, 180.0 * unit(rng));
+        settings.gyration = [g](double) { return g; };
+        settings.wavelengths_nm = {400.0, 480.0, 550.0, 650.0, 750.0};
+        const PrincipalIndexFunction indices = [&](double nm) {
+            return Eigen::Vector3d((indicatrix.principal_n.array() + 0.004 * (550.0 * 550.0 / (nm * nm) - 1.0)).matrix());
+        };
+        const detail::ConoscopeEvaluator spectral(settings, indices);
+        detail::SpectralScratch scratch;
+        std::vector<double> plus(5), minus(5);
+        std::vector<Eigen::Vector2d> xis;
+        for (int direction = 0; direction < 30; ++direction) {
+            const Eigen::Vector2d xi = 0.95 * std::sqrt(unit(rng)) * Eigen::Vector2d(std::cos(2 * M_PI * unit(rng)), std::sin(2 * M_PI * unit(rng)));
+            xis.push_back(xi);
+            spectral.spectral_pair(xi, scratch, false, plus.data(), minus.data());
+            for (std::size_t w = 0; w < 5; ++w) {
+                const std::array<double, 2> reference = spectral.reference_pair(w, xi);
+                worst_spectral = std::max({worst_spectral, std::abs(plus[w] - reference[0]), std::abs(minus[w] - reference[1])});
+            }
+        }
+        settings.wavelengths_nm = {589.3};
+        const detail::ConoscopeEvaluator monochromatic(settings, indices);
+        std::vector<double> batch_plus(xis.size()), batch_minus(xis.size());
+        monochromatic.monochromatic_pairs(xis, scratch.every_wavelength, batch_plus.data(), batch_minus.data());
+        for (std::size_t k = 0; k < xis.size(); ++k) {
+            const std::array<double, 2> reference = monochromatic.reference_pair(0, xis[k]);
+            worst_batch = std::max({worst_batch, std::abs(batch_plus[k] - reference[0]), std::abs(batch_minus[k] - reference[1])});
+        }
+    }
+    EXPECT_LT(worst_spectral, 1e-12);
+    EXPECT_LT(worst_batch, 1e-12);
+    std::printf("active kernel vs reference: white %.2e, monochromatic batches %.2e\n", worst_spectral, worst_batch);
+}
+
+TEST(ConoscopeActivity, InterferenceTermsRefuseAnActiveCrystal) {
+    // mean + modulation·cos(phase·d) is not the thickness dependence of an active crystal.
+    const ConoscopeSettings settings = basal_quartz(Handedness::right);
+    EXPECT_THROW({ const ConoscopeTerms terms(settings, testing::indices_of(quartz())); }, InputError);
+}
+
+}  // namespace
+}  // namespace petroscope
