@@ -74,7 +74,7 @@ md "## Conoscopic figures of ten minerals" "" \
 
 figure calcite-30um "Calcite (uniaxial, negative), 30 µm, cut perpendicular to the optic axis: the dark cross and the isochromes of a strongly birefringent crystal." \
     conoscope --mineral calcite --thickness 30um --size $size
-figure quartz-1mm "Quartz (uniaxial, positive), 1 mm, perpendicular to the optic axis (its optical activity is not modelled, so the centre stays dark)." \
+figure quartz-1mm "Quartz (uniaxial, positive), 1 mm, perpendicular to the optic axis: right-handed quartz turns the plane of polarization by 22° along the axis (more in the violet), so the cross fades out before the centre, which is lit and coloured." \
     conoscope --mineral quartz --thickness 1mm --size $size
 figure zircon-200um "Zircon (uniaxial, positive, n ≈ 1.93–1.98), 200 µm: its high indices bend the rays toward the axis, so the rings are wide for its birefringence." \
     conoscope --mineral zircon --thickness 200um --size $size
@@ -102,6 +102,21 @@ figure quartz-flash-5deg "Flash figure: quartz, 150 µm, optic axis in the plane
     conoscope --mineral quartz --cut optic-normal --thickness 150um --stage-deg 5 --size $size
 figure quartz-flash-45deg "The same section at 45°: the retardation falls toward the two quadrants the optic axis points into and rises in the other two, so the isochromes are hyperbolae." \
     conoscope --mineral quartz --cut optic-normal --thickness 150um --stage-deg 45 --size $size
+
+# ---------------------------------------------------------------------------------------------------------
+md "## Optical activity: quartz" "" \
+   "Quartz turns the plane of polarization of light along its optic axis, 21.7°/mm at 589 nm and more at shorter" \
+   "wavelengths ([theory.md](theory.md) §9). Right-handed quartz turns it clockwise for an observer looking toward" \
+   "the light; left-handed quartz the other way (\`--handedness\`, [conventions.md](conventions.md))." ""
+
+figure quartz-3mm "Quartz, 3 mm, perpendicular to the optic axis: the rotation (65° at 589 nm) colours a wider centre, and the isogyres fade further out." \
+    conoscope --mineral quartz --thickness 3mm --size $size
+figure quartz-2mm-mica-right "Right-handed quartz, 2 mm, with the λ/4 mica plate (slow direction NE–SW): the isochromes become a two-armed spiral." \
+    conoscope --mineral quartz --thickness 2mm --plate mica --size $size
+figure quartz-2mm-mica-left "The same with left-handed quartz: the spiral turns the other way, which tells the two forms apart." \
+    conoscope --mineral quartz --thickness 2mm --plate mica --handedness left --size $size
+figure quartz-3750um-parallel "Quartz, 3.75 mm, between parallel polars: along the axis the yellow-green near 555 nm is turned by about 90° and removed, leaving the purple of Soleil's sensitive tint at the centre." \
+    conoscope --mineral quartz --thickness 3750um --analyzer-deg 0 --size $size
 
 # ---------------------------------------------------------------------------------------------------------
 md "## Conical refraction" "" \

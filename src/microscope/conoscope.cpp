@@ -24,7 +24,6 @@ void ConoscopeSettings::validate() const {
     if (!(surround_n >= 1.0) || !std::isfinite(surround_n)) fail("surrounding-medium index must be a finite number >= 1");
     if (!mounting && surround_n <= numerical_aperture) fail("surrounding-medium index must exceed the numerical aperture");
     if (exact && !mounting) fail("the exact 4x4 mode needs the whole stack (a mounting)");
-    if (gyration && mounting) fail("optical activity is modelled for a slab immersed in its surround only, not yet in the mounted section");
     for (const double angle : {polarizer_deg, analyzer_deg, stage_deg}) {
         if (!std::isfinite(angle)) fail("angles must be finite numbers of degrees");
     }
@@ -41,7 +40,7 @@ bool interpolates_spectrum(const ConoscopeSettings& settings) {
     std::vector<double> distinct = settings.wavelengths_nm;
     std::sort(distinct.begin(), distinct.end());
     distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
-    return settings.spectrum == SpectrumSampling::interpolated && !settings.mounting && !settings.gyration &&
+    return settings.spectrum == SpectrumSampling::interpolated && !settings.mounting &&
            distinct.size() >= 2 * static_cast<std::size_t>(kSpectralNodeCount);
 }
 

@@ -34,11 +34,12 @@ std::vector<BinormalFrame> frames_for(const ConoscopeSettings& settings, const P
 }
 
 // The gyration tensor in the lab frame per wavelength: g_lab = A·g·Aᵀ with A the indicatrix axes turned by the stage.
-std::vector<Eigen::Matrix3d> gyration_for(const ConoscopeSettings& settings) {
+template <typename Wavelengths>
+std::vector<Eigen::Matrix3d> gyration_for(const ConoscopeSettings& settings, const Wavelengths& wavelengths) {
     std::vector<Eigen::Matrix3d> tensors;
     if (!settings.gyration) return tensors;
     const Eigen::Matrix3d axes = rotation_z_deg(settings.stage_deg) * settings.crystal_axes;
-    for (const double wavelength_nm : settings.wavelengths_nm) {
+    for (const double wavelength_nm : wavelengths) {
         const Eigen::Matrix3d g = settings.gyration(wavelength_nm);
         if (!g.allFinite()) throw InputError("the crystal's gyration tensor is not finite at " + format_number(wavelength_nm) + " nm");
         const Eigen::Matrix3d lab = axes * g * axes.transpose();
@@ -94,7 +95,7 @@ ConoscopeEvaluator::ConoscopeEvaluator(const ConoscopeSettings& settings, const 
       k0_thickness_(k0_thickness_for(settings.wavelengths_nm, settings.thickness_um)),
       k0_per_um_(k0_thickness_for(settings.wavelengths_nm, 1.0)),
       spectral_samples_(samples_of(frames_, k0_thickness_, settings.surround_n, 1)),
-      gyration_lab_(gyration_for(settings)) {
+      gyration_lab_(gyration_for(settings, settings.wavelengths_nm)) {
     if (frames_.size() == 1) monochromatic_samples_ = samples_of(frames_, k0_thickness_, settings.surround_n, kMonochromaticBatch);
     if (!gyration_lab_.empty()) {
         set_gyration(spectral_samples_, gyration_lab_);
@@ -104,6 +105,7 @@ ConoscopeEvaluator::ConoscopeEvaluator(const ConoscopeSettings& settings, const 
         nodes_.emplace(settings.wavelengths_nm);
         const std::vector<BinormalFrame> node_frames = frames_for(settings, principal_n, nodes_->wavelengths_nm());
         node_samples_ = samples_of(node_frames, k0_thickness_for(nodes_->wavelengths_nm(), settings.thickness_um), settings.surround_n, 1);
+        if (settings.gyration) set_gyration(*node_samples_, gyration_for(settings, nodes_->wavelengths_nm()));
     }
     if (settings.plate) {
         for (const double wavelength_nm : settings.wavelengths_nm) plate_jones_lab_.push_back(plate_jones_lab(*settings.plate, wavelength_nm, false));

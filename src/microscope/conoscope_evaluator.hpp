@@ -63,6 +63,10 @@ private:
     /// The transmission at every wavelength from the node fields in `scratch` (run with KernelOutput::fields);
     /// false, with nothing written, where the fields or δ cannot be interpolated accurately enough.
     bool interpolated_pair(const KernelScratch& scratch, double* out_plus, double* out_minus) const;
+    /// interpolated_pair's transmission of one side of an optically active crystal from its node values.
+    void active_interpolated_side(const KernelScratch& scratch, int side, const std::array<NodeValues, 4>& fields,
+                                  const std::array<NodeValues, 4>& coupled, const NodeValues& phase, const NodeValues& product,
+                                  double* out) const;
     /// The kernel's transmission at every wavelength, the reference path's where a sample failed.
     void collect_pair(const Eigen::Vector2d& xi, const KernelScratch& scratch, bool any_failed, double* out_plus, double* out_minus) const;
     /// The slab's transfer for ξ (index 0) and −ξ (1) at wavelength index `w`; none where a sheet has no

@@ -19,6 +19,26 @@ constexpr double kSmoothness = 2.0;
 // most sensitive; beyond them every wavelength is solved (a thick slab of a strongly dispersive crystal).
 constexpr double kPhaseTolerance_rad = 1e-3;
 constexpr double kFieldTolerance = 1e-4;
+// An optically active crystal's p = b₀b₁ ≥ 0 enters through Ω = √((δ/2)² + p) ≥ √p: an error e in p moves Ω by
+// at most e/(2√p), and by at most √e whatever p. The tolerance on p keeps Ω within kPhaseTolerance_rad.
+double coupling_product_tolerance(const NodeValues& product) {
+    const double smallest = *std::min_element(product.begin(), product.end());
+    return std::max(kPhaseTolerance_rad * kPhaseTolerance_rad, 2.0 * kPhaseTolerance_rad * std::sqrt(std::max(smallest, 0.0)));
+}
+
+// One component of an active crystal's node fields, w_s·(s part) + w_p·(p part): F₀, F₁, G₀, G₁
+// (spectral_nodes.hpp, ActiveNodeFields) from mode_field (s fast, s slow, p fast, p slow) and coupled_field.
+std::array<NodeValues, 4> active_component(const std::array<NodeValues, 4>& fields, const std::array<NodeValues, 4>& coupled, double w_s,
+                                           double w_p) {
+    std::array<NodeValues, 4> component{};
+    for (std::size_t j = 0; j < kSpectralNodes; ++j) {
+        component[0][j] = w_s * fields[0][j] + w_p * fields[2][j];
+        component[1][j] = w_s * fields[1][j] + w_p * fields[3][j];
+        component[2][j] = w_s * coupled[0][j] + w_p * coupled[2][j];
+        component[3][j] = w_s * coupled[1][j] + w_p * coupled[3][j];
+    }
+    return component;
+}
 
 }  // namespace
 
@@ -57,17 +77,31 @@ bool ConoscopeEvaluator::smooth_over_spectrum(const KernelScratch& scratch) cons
 }
 
 bool ConoscopeEvaluator::interpolated_pair(const KernelScratch& scratch, double* out_plus, double* out_minus) const {
-    std::array<std::array<NodeValues, 4>, 2> side_fields;
-    std::array<NodeValues, 2> side_phase;
+    std::array<std::array<NodeValues, 4>, 2> side_fields, side_coupled;
+    std::array<NodeValues, 2> side_phase, side_product;
+    const bool active = !gyration_lab_.empty();
     for (int side = 0; side < 2; ++side) {
         for (std::size_t j = 0; j < kSpectralNodes; ++j) {
             for (std::size_t c = 0; c < 4; ++c) side_fields[side][c][j] = scratch.mode_field[side][c][j];
             side_phase[side][j] = scratch.phase_difference[side][j];
+            if (!active) continue;
+            for (std::size_t c = 0; c < 4; ++c) side_coupled[side][c][j] = scratch.coupled_field[side][c][j];
+            side_product[side][j] = scratch.coupling_product[side][j];
         }
         if (!(nodes_->tail(side_phase[side]) <= kPhaseTolerance_rad)) return false;
         for (const NodeValues& field : side_fields[side]) {
             if (!(nodes_->tail(field) <= kFieldTolerance)) return false;
         }
+        if (!active) continue;
+        for (const NodeValues& field : side_coupled[side]) {
+            if (!(nodes_->tail(field) <= kFieldTolerance)) return false;
+        }
+        if (!(nodes_->tail(side_product[side]) <= coupling_product_tolerance(side_product[side]))) return false;
+    }
+    if (active) {
+        for (int side = 0; side < 2; ++side) active_interpolated_side(scratch, side, side_fields[side], side_coupled[side], side_phase[side],
+                                                                      side_product[side], side == 0 ? out_plus : out_minus);
+        return true;
     }
     for (int side = 0; side < 2; ++side) {
         const std::array<NodeValues, 4>& fields = side_fields[side];
@@ -106,6 +140,34 @@ bool ConoscopeEvaluator::interpolated_pair(const KernelScratch& scratch, double*
         }
     }
     return true;
+}
+
+void ConoscopeEvaluator::active_interpolated_side(const KernelScratch& scratch, int side, const std::array<NodeValues, 4>& fields,
+                                                  const std::array<NodeValues, 4>& coupled, const NodeValues& phase,
+                                                  const NodeValues& product, double* out) const {
+    // This side's ρ̂ and ŝ = ẑ × ρ̂, as in interpolated_pair.
+    const double sign = side == 0 ? 1.0 : scratch.reversal[0];
+    const double rho_x = sign * scratch.rho_x[0], rho_y = sign * scratch.rho_y[0];
+    const double s_x = -rho_y, s_y = rho_x;
+    ActiveNodeFields active;
+    active.coupling_product = product;
+    if (!plate_jones_lab_.empty()) {
+        active.components = 2;
+        active.component = {active_component(fields, coupled, s_x, rho_x), active_component(fields, coupled, s_y, rho_y)};
+        PlateAnalyzers analyzers{polars_.analyzer_in ? 1 : 2, {}};
+        for (std::size_t k = 0; k < 2; ++k) {
+            for (std::size_t c = 0; c < 4; ++c) analyzers.lab[k][c] = spectral_samples_.plate_analyzer[k][c].data();
+        }
+        interpolated_active_transmission(*nodes_, active, phase, &analyzers, out);
+    } else if (polars_.analyzer_in) {
+        active.component[0] = active_component(fields, coupled, polars_.analyzer.x() * s_x + polars_.analyzer.y() * s_y,
+                                               polars_.analyzer.x() * rho_x + polars_.analyzer.y() * rho_y);
+        interpolated_active_transmission(*nodes_, active, phase, nullptr, out);
+    } else {
+        active.components = 2;
+        active.component = {active_component(fields, coupled, 1.0, 0.0), active_component(fields, coupled, 0.0, 1.0)};
+        interpolated_active_transmission(*nodes_, active, phase, nullptr, out);
+    }
 }
 
 }  // namespace petroscope::detail

@@ -222,20 +222,16 @@ struct ActiveAmplitudes {
     return {sc.cosine * t0 - s * b0 * t1, s * b1 * t0 + sc.cosine * t1, s * a * t0, -s * a * t1};
 }
 
-// The coupling (c₀, c₁) of optics/slab.hpp's gyration_coupling for one sample: τ = (g·N̄)·(E_slow × E_fast),
-// cₘ = τ/(2fₘ), fₘ = (Eₘ × Hₘ)_z = ψ₁ψ₂ + ψ₃ψ₄, N̄ = (ξ, (q_fast + q_slow)/2), with the lab-frame E of each mode
-// rebuilt from ψ (E·ρ̂, E·ŝ) and E·ẑ.
-struct ModeVectors {
-    double fx, fy, fz, sx, sy, sz;  // E_fast, E_slow
-};
-[[gnu::always_inline]] inline std::pair<double, double> coupling(const double* g, const ModeVectors& e, double xi_x, double xi_y,
-                                                                  double q_mean, double flux_fast, double flux_slow) {
-    // g·N̄ with g = (g_xx, g_yy, g_zz, g_xy, g_xz, g_yz).
-    const double gx = g[0] * xi_x + g[3] * xi_y + g[4] * q_mean;
-    const double gy = g[3] * xi_x + g[1] * xi_y + g[5] * q_mean;
-    const double gz = g[4] * xi_x + g[5] * xi_y + g[2] * q_mean;
-    const double tau = gx * (e.sy * e.fz - e.sz * e.fy) + gy * (e.sz * e.fx - e.sx * e.fz) + gz * (e.sx * e.fy - e.sy * e.fx);
-    return {0.5 * tau / flux_fast, 0.5 * tau / flux_slow};
+// τ = (g·N̄)·(E_slow × E_fast) of optics/slab.hpp's gyration_coupling for one sample, with g = (g_xx, g_yy, g_zz,
+// g_xy, g_xz, g_yz), N̄ = (ξ_x, ξ_y, q̄) and the lab-frame fields E_fast = (f_x, f_y, f_z), E_slow = (s_x, s_y, s_z).
+// Scalars only: a struct or array argument here stops GCC 12 from vectorising the sample loop.
+[[gnu::always_inline]] inline double coupling_tau(double g_xx, double g_yy, double g_zz, double g_xy, double g_xz, double g_yz, double xi_x,
+                                                  double xi_y, double q_mean, double f_x, double f_y, double f_z, double s_x, double s_y,
+                                                  double s_z) {
+    const double gx = g_xx * xi_x + g_xy * xi_y + g_xz * q_mean;
+    const double gy = g_xy * xi_x + g_yy * xi_y + g_yz * q_mean;
+    const double gz = g_xz * xi_x + g_yz * xi_y + g_zz * q_mean;
+    return gx * (s_y * f_z - s_z * f_y) + gy * (s_z * f_x - s_x * f_z) + gz * (s_x * f_y - s_y * f_x);
 }
 
 // Single-pass transmission for one side from its forward modes and the other side's (time-reversed:
@@ -245,7 +241,7 @@ struct ModeVectors {
 template <bool AnalyzerIn, KernelOutput Output, bool Plate, bool Active, int Side>
 void side_transmission(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch) {
     static_assert(!(Plate && Output != KernelOutput::transmission), "terms and fields are defined without a plate only");
-    static_assert(!(Active && Output != KernelOutput::transmission), "terms and fields are defined without optical activity only");
+    static_assert(!(Active && Output == KernelOutput::terms), "terms are defined without optical activity only");
     constexpr bool Terms = Output == KernelOutput::terms;
     constexpr int other = 1 - Side;
     const double *rho_x0 = scratch.rho_x.data(), *rho_y0 = scratch.rho_y.data(), *reversal = scratch.reversal.data();
@@ -268,6 +264,9 @@ void side_transmission(const SampleCrystal& crystal, const PolarizerPair& polars
     auto& field = scratch.mode_field[Side];
     double *field_s0 = field[0].data(), *field_s1 = field[1].data(), *field_p0 = field[2].data(), *field_p1 = field[3].data();
     double* phase = scratch.phase_difference[Side].data();
+    auto& coupled = scratch.coupled_field[Side];
+    double *coupled_s0 = coupled[0].data(), *coupled_s1 = coupled[1].data(), *coupled_p0 = coupled[2].data(), *coupled_p1 = coupled[3].data();
+    double* coupling_product = scratch.coupling_product[Side].data();
     const double pol_x = polars.polarizer.x(), pol_y = polars.polarizer.y();
     const double ana_x = polars.analyzer.x(), ana_y = polars.analyzer.y();
     const auto& plate = crystal.plate_analyzer;
@@ -313,12 +312,24 @@ void side_transmission(const SampleCrystal& crystal, const PolarizerPair& polars
         const double e10 = f10 - (bp10 * r00 + bp11 * r10), e11 = f11 - (bp10 * r01 + bp11 * r11);
         if constexpr (Active) {
             constexpr double direction = Side == 0 ? 1.0 : -1.0;
-            const ModeVectors e{f0[i] * rho_x + f2[i] * s_x, f0[i] * rho_y + f2[i] * s_y, ez_fast[i],
-                                s0[i] * rho_x + s2[i] * s_x, s0[i] * rho_y + s2[i] * s_y, ez_slow[i]};
-            const double g[6] = {g_xx[i], g_yy[i], g_zz[i], g_xy[i], g_xz[i], g_yz[i]};
-            const auto [c0, c1] = coupling(g, e, direction * xi_x0[i], direction * xi_y0[i], 0.5 * (qf[i] + qs[i]),
-                                           f0[i] * f1[i] + f2[i] * f3[i], s0[i] * s1[i] + s2[i] * s3[i]);
+            // The coupling cₘ = τ/(2fₘ), fₘ = (Eₘ × Hₘ)_z = ψ₁ψ₂ + ψ₃ψ₄, E rebuilt from ψ (E·ρ̂, E·ŝ) and E·ẑ.
+            const double tau = coupling_tau(g_xx[i], g_yy[i], g_zz[i], g_xy[i], g_xz[i], g_yz[i], direction * xi_x0[i], direction * xi_y0[i],
+                                            0.5 * (qf[i] + qs[i]), f0[i] * rho_x + f2[i] * s_x, f0[i] * rho_y + f2[i] * s_y, ez_fast[i],
+                                            s0[i] * rho_x + s2[i] * s_x, s0[i] * rho_y + s2[i] * s_y, ez_slow[i]);
+            const double c0 = 0.5 * tau / (f0[i] * f1[i] + f2[i] * f3[i]), c1 = 0.5 * tau / (s0[i] * s1[i] + s2[i] * s3[i]);
             const double k0d = k0_thickness[i];
+            if constexpr (Output == KernelOutput::fields) {
+                field_s0[i] = e00 * t0;
+                field_s1[i] = e01 * t1;
+                field_p0[i] = e10 * t0;
+                field_p1[i] = e11 * t1;
+                phase[i] = k0d * (qf[i] - qs[i]);
+                coupled_s0[i] = k0d * c0 * e00 * t1;
+                coupled_s1[i] = k0d * c1 * e01 * t0;
+                coupled_p0[i] = k0d * c0 * e10 * t1;
+                coupled_p1[i] = k0d * c1 * e11 * t0;
+                coupling_product[i] = k0d * c0 * k0d * c1;
+            }
             const ActiveAmplitudes m = active_amplitudes(t0, t1, 0.5 * k0d * (qf[i] - qs[i]), k0d * c0, k0d * c1);
             // The field leaving the slab, R + i·I in (ŝ, ρ̂).
             const double rs = e00 * m.r0 + e01 * m.r1, rp = e10 * m.r0 + e11 * m.r1;
@@ -340,38 +351,38 @@ void side_transmission(const SampleCrystal& crystal, const PolarizerPair& polars
             } else {
                 out[i] = rs * rs + rp * rp + is * is + ip * ip;
             }
-            continue;
-        }
-        const double sin2 = sin_squared(0.5 * k0_thickness[i] * (qf[i] - qs[i]));
-        // The field each mode leaves with, in (ŝ, ρ̂).
-        const double s_fast = e00 * t0, s_slow = e01 * t1, p_fast = e10 * t0, p_slow = e11 * t1;
-        if constexpr (Output == KernelOutput::fields) {
-            field_s0[i] = s_fast;
-            field_s1[i] = s_slow;
-            field_p0[i] = p_fast;
-            field_p1[i] = p_slow;
-            phase[i] = k0_thickness[i] * (qf[i] - qs[i]);
-        }
-        if constexpr (Plate) {
-            const double cos_delta = 1.0 - 2.0 * sin2, sin_delta = sine(k0_thickness[i] * (qf[i] - qs[i]));
-            const auto analyzed = [&](double re_x, double re_y, double im_x, double im_y) {
-                return complex_analyzer_intensity(re_x * s_x + re_y * s_y, re_x * rho_x + re_y * rho_y, im_x * s_x + im_y * s_y,
-                                                  im_x * rho_x + im_y * rho_y, s_fast, p_fast, s_slow, p_slow, cos_delta, sin_delta);
-            };
-            out[i] = analyzed(b0_re_x[i], b0_re_y[i], b0_im_x[i], b0_im_y[i]);
-            if constexpr (!AnalyzerIn) out[i] += analyzed(b1_re_x[i], b1_re_y[i], b1_im_x[i], b1_im_y[i]);
-        } else if constexpr (AnalyzerIn) {
-            const double u0 = a_s * s_fast + a_p * p_fast, u1 = a_s * s_slow + a_p * p_slow;
-            out[i] = pair_intensity(u0, u1, sin2);
-            if constexpr (Terms) {
-                mean[i] = u0 * u0 + u1 * u1;
-                modulation[i] = 2.0 * u0 * u1;
-            }
         } else {
-            out[i] = pair_intensity(s_fast, s_slow, sin2) + pair_intensity(p_fast, p_slow, sin2);
-            if constexpr (Terms) {
-                mean[i] = s_fast * s_fast + s_slow * s_slow + p_fast * p_fast + p_slow * p_slow;
-                modulation[i] = 2.0 * (s_fast * s_slow + p_fast * p_slow);
+            const double sin2 = sin_squared(0.5 * k0_thickness[i] * (qf[i] - qs[i]));
+            // The field each mode leaves with, in (ŝ, ρ̂).
+            const double s_fast = e00 * t0, s_slow = e01 * t1, p_fast = e10 * t0, p_slow = e11 * t1;
+            if constexpr (Output == KernelOutput::fields) {
+                field_s0[i] = s_fast;
+                field_s1[i] = s_slow;
+                field_p0[i] = p_fast;
+                field_p1[i] = p_slow;
+                phase[i] = k0_thickness[i] * (qf[i] - qs[i]);
+            }
+            if constexpr (Plate) {
+                const double cos_delta = 1.0 - 2.0 * sin2, sin_delta = sine(k0_thickness[i] * (qf[i] - qs[i]));
+                const auto analyzed = [&](double re_x, double re_y, double im_x, double im_y) {
+                    return complex_analyzer_intensity(re_x * s_x + re_y * s_y, re_x * rho_x + re_y * rho_y, im_x * s_x + im_y * s_y,
+                                                      im_x * rho_x + im_y * rho_y, s_fast, p_fast, s_slow, p_slow, cos_delta, sin_delta);
+                };
+                out[i] = analyzed(b0_re_x[i], b0_re_y[i], b0_im_x[i], b0_im_y[i]);
+                if constexpr (!AnalyzerIn) out[i] += analyzed(b1_re_x[i], b1_re_y[i], b1_im_x[i], b1_im_y[i]);
+            } else if constexpr (AnalyzerIn) {
+                const double u0 = a_s * s_fast + a_p * p_fast, u1 = a_s * s_slow + a_p * p_slow;
+                out[i] = pair_intensity(u0, u1, sin2);
+                if constexpr (Terms) {
+                    mean[i] = u0 * u0 + u1 * u1;
+                    modulation[i] = 2.0 * u0 * u1;
+                }
+            } else {
+                out[i] = pair_intensity(s_fast, s_slow, sin2) + pair_intensity(p_fast, p_slow, sin2);
+                if constexpr (Terms) {
+                    mean[i] = s_fast * s_fast + s_slow * s_slow + p_fast * p_fast + p_slow * p_slow;
+                    modulation[i] = 2.0 * (s_fast * s_slow + p_fast * p_slow);
+                }
             }
         }
     }
@@ -466,10 +477,12 @@ void KernelScratch::resize(std::size_t padded_samples) {
     }
     for (auto& side : psi) for (auto& sheet : side) for (auto& component : sheet) component.resize(padded_samples);
     for (auto& side : sheet_failed) for (auto& sheet : side) sheet.resize(padded_samples);
-    for (auto* set : {&previous_xi_x, &previous_xi_y, &transmission, &mean, &modulation, &phase_difference}) {
+    for (auto* set : {&previous_xi_x, &previous_xi_y, &transmission, &mean, &modulation, &phase_difference, &coupling_product}) {
         for (auto& side : *set) side.resize(padded_samples);
     }
-    for (auto& side : mode_field) for (auto& component : side) component.resize(padded_samples);
+    for (auto* set : {&mode_field, &coupled_field}) {
+        for (auto& side : *set) for (auto& component : side) component.resize(padded_samples);
+    }
     failed.resize(padded_samples);
 }
 
@@ -486,10 +499,12 @@ namespace {
 
 /// The transmission from the modes in `scratch`, and each sample's failure flag; whether any failed.
 bool transmit_and_flag(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch, KernelOutput output) {
-    if (crystal.gyrotropic && output != KernelOutput::transmission) {
-        throw std::logic_error("conoscope kernel: interference terms and fields are defined without optical activity only");
+    if (crystal.gyrotropic && output == KernelOutput::terms) {
+        throw std::logic_error("conoscope kernel: interference terms are defined without optical activity only");
     }
-    if (output == KernelOutput::terms) {
+    if (crystal.gyrotropic && output == KernelOutput::fields) {
+        transmission_of_both_sides<KernelOutput::fields, false, true>(crystal, polars, scratch);
+    } else if (output == KernelOutput::terms) {
         transmission_of_both_sides<KernelOutput::terms, false>(crystal, polars, scratch);
     } else if (output == KernelOutput::fields) {
         transmission_of_both_sides<KernelOutput::fields, false>(crystal, polars, scratch);

@@ -85,6 +85,11 @@ struct KernelScratch {
     // these do not depend on the sign chosen for each eigenvector, so they are smooth in wavelength.
     std::array<std::array<std::vector<double>, 4>, 2> mode_field;
     std::array<std::vector<double>, 2> phase_difference;
+    // KernelOutput::fields of an optically active crystal, also sign-free and smooth: coupled_field[side] holds
+    // b₀·E_fast·t_slow and b₁·E_slow·t_fast (s of both, then p of both), E_m the mode's exit column and t_m its
+    // entrance amplitude, and coupling_product[side] = b₀b₁, with bₘ = k₀d·cₘ (the coupling of optics/slab.hpp).
+    std::array<std::array<std::vector<double>, 4>, 2> coupled_field;
+    std::array<std::vector<double>, 2> coupling_product;
     std::vector<std::int64_t> failed;  // per sample: recompute with the reference path
     bool warm_ready = false;           // the last run's roots can start the next run's iterations
 };
@@ -96,7 +101,8 @@ void set_sample_directions(KernelScratch& scratch, std::size_t first, std::size_
 enum class KernelOutput {
     transmission,  // only the transmission
     terms,         // also scratch.mean and scratch.modulation (no plate, no optical activity)
-    fields,        // also scratch.mode_field and scratch.phase_difference (no plate, no optical activity)
+    fields,        // also scratch.mode_field and scratch.phase_difference, and with optical activity
+                   // scratch.coupled_field and scratch.coupling_product (no plate)
 };
 
 /// Transmission of every sample into scratch.transmission[side]. With `warm` (allowed when

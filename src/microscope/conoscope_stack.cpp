@@ -17,6 +17,7 @@ Image render_conoscope_through_stack(const ConoscopeSettings& settings, const Pr
     microscope.wavelengths_nm = settings.wavelengths_nm;
     DispersiveMedium crystal;
     crystal.principal_n = principal_n;
+    crystal.gyration = settings.gyration;
     crystal.axes = settings.crystal_axes;
     const MicroscopeOptics common(microscope, *settings.mounting, {});
 

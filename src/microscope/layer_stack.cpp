@@ -109,7 +109,7 @@ ModalJones single_pass_jones(const std::vector<OpticalLayer>& layers, std::size_
     modes.reserve(layers.size());
     bool propagating = true;
     for (const OpticalLayer& layer : layers) {
-        modes.push_back(berreman_modes(layer.epsilon, xi));
+        modes.push_back(berreman_modes(layer.epsilon, layer.chirality, xi));
         if (modes.back()[0].evanescent || modes.back()[1].evanescent) propagating = false;
     }
     // The ambient → the variable layer's forward modes (just inside its lower face)…
@@ -130,7 +130,7 @@ ModalJones single_pass_jones(const std::vector<OpticalLayer>& layers, std::size_
 Eigen::Matrix2cd coherent_jones(const std::vector<OpticalLayer>& layers, double wavelength_nm,
                                 const Eigen::Vector2d& xi, double ambient_n) {
     std::vector<StackLayer> stack;
-    for (const OpticalLayer& layer : layers) stack.push_back({layer.epsilon, layer.thickness_um});
+    for (const OpticalLayer& layer : layers) stack.push_back({layer.epsilon, layer.thickness_um, layer.chirality});
     const Eigen::Matrix3cd ambient_epsilon = ambient_permittivity(ambient_n);
     const MediumWaves ambient = berreman_modes(ambient_epsilon, xi);
     Eigen::Matrix2cd jones;

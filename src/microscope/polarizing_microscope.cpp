@@ -21,6 +21,12 @@ Eigen::Matrix2d sp_to_lab(const TangentialWavevector& direction) {
 
 }  // namespace
 
+Eigen::Matrix3d DispersiveMedium::chirality(double wavelength_nm) const {
+    if (!gyration) return Eigen::Matrix3d::Zero();
+    const Eigen::Matrix3d lab = axes * gyration(wavelength_nm) * axes.transpose();
+    return chirality_tensor(0.5 * (lab + lab.transpose()));
+}
+
 GyrationFunction mineral_gyration(const Mineral& mineral, Handedness handedness) {
     if (!mineral.optically_active()) return {};
     return [&mineral, handedness](double wavelength_nm) {
@@ -155,11 +161,11 @@ double MicroscopeOptics::analyzed_intensity(const Eigen::Matrix2cd& section_jone
 }
 
 std::vector<OpticalLayer> MicroscopeOptics::section_layers(std::size_t wavelength, const Eigen::Matrix3cd& crystal,
-                                                           double crystal_thickness_um) const {
+                                                           const Eigen::Matrix3d& crystal_chirality, double crystal_thickness_um) const {
     const MountingPermittivity& epsilon = mounting_epsilon_[wavelength];
     return {{epsilon.slide, mounting_.slide_um},
             {epsilon.cement, mounting_.lower_cement_um},
-            {crystal, crystal_thickness_um},
+            {crystal, crystal_thickness_um, crystal_chirality},
             {epsilon.cement, mounting_.upper_cement_um},
             {epsilon.cover, mounting_.cover_um}};
 }
@@ -173,9 +179,13 @@ GrainResponse::GrainResponse(const MicroscopeOptics& optics, const DispersiveMed
     samples_.reserve(settings.wavelengths_nm.size() * directions.size());
     for (std::size_t w = 0; w < settings.wavelengths_nm.size(); ++w) {
         const Eigen::Matrix3cd epsilon = crystal_.permittivity(settings.wavelengths_nm[w]);
+        const Eigen::Matrix3d chirality = crystal_.chirality(settings.wavelengths_nm[w]);
+        const bool active = !chirality.isZero(0.0);
         for (std::size_t k = 0; k < directions.size(); ++k) {
             const MicroscopeOptics::Path& path = optics.path(w, k);
-            const MediumWaves waves = directions[k].xi.isZero() ? normal_incidence_waves(epsilon) : berreman_modes(epsilon, directions[k].xi);
+            // An active crystal's modes are elliptical, split even at normal incidence: the general solver serves it.
+            const MediumWaves waves = directions[k].xi.isZero() && !active ? normal_incidence_waves(epsilon)
+                                                                            : berreman_modes(epsilon, chirality, directions[k].xi);
             const Eigen::Vector2cd entry = forward_transmission(path.cement, waves) * path.into_crystal;
             const Eigen::Matrix2cd exit = path.to_eye * forward_transmission(waves, path.cement);
             Sample sample;
@@ -198,7 +208,8 @@ void GrainResponse::transmission(double thickness_um, std::vector<double>& out) 
     if (settings.exact) {
         for (std::size_t w = 0; w < wavelength_count; ++w) {
             const double wavelength_nm = settings.wavelengths_nm[w];
-            const std::vector<OpticalLayer> layers = optics_.section_layers(w, crystal_.permittivity(wavelength_nm), thickness_um);
+            const std::vector<OpticalLayer> layers =
+                optics_.section_layers(w, crystal_.permittivity(wavelength_nm), crystal_.chirality(wavelength_nm), thickness_um);
             for (std::size_t k = 0; k < directions.size(); ++k) {
                 const Eigen::Matrix2cd jones = coherent_jones(layers, wavelength_nm, directions[k].xi);
                 out[w] += directions[k].weight * optics_.analyzed_intensity(jones, w, k);

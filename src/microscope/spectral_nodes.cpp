@@ -123,4 +123,82 @@ void interpolated_transmission(const SpectralNodes& nodes, const std::array<Node
     });
 }
 
+namespace {
+
+// The field of one component at one wavelength from its interpolated F₀, F₁, G₀, G₁ (interpolated_active_transmission).
+struct ComplexComponent {
+    double real, imaginary;
+};
+[[gnu::always_inline]] inline ComplexComponent active_component(double f0, double f1, double g0, double g1, double cosine, double sinc,
+                                                                 double half_delta) {
+    return {cosine * (f0 + f1) + sinc * (g1 - g0), sinc * half_delta * (f0 - f1)};
+}
+
+// Interpolates δ, b₀b₁ and the 4·Components field quantities to every grid wavelength (scalars, as in over_grid)
+// and stores evaluate(w, first, second) of the components' fields there.
+template <int Components, typename Evaluate>
+void over_grid_active(const SpectralNodes& nodes, const ActiveNodeFields& fields, const NodeValues& phase, double* out,
+                      const Evaluate& evaluate) {
+    const double* basis = nodes.basis();
+    const std::size_t stride = nodes.padded_grid_size();
+    const int count = static_cast<int>(nodes.grid_size());
+    const auto &first = fields.component[0], &second = fields.component[1];
+    const NodeValues& product = fields.coupling_product;
+#pragma omp simd
+    for (int w = 0; w < count; ++w) {
+        double a0 = 0.0, a1 = 0.0, a2 = 0.0, a3 = 0.0, b0 = 0.0, b1 = 0.0, b2 = 0.0, b3 = 0.0, delta = 0.0, p = 0.0;
+        for (std::size_t j = 0; j < kSpectralNodes; ++j) {
+            const double b = basis[j * stride + static_cast<std::size_t>(w)];
+            delta += b * phase[j];
+            p += b * product[j];
+            a0 += b * first[0][j];
+            a1 += b * first[1][j];
+            a2 += b * first[2][j];
+            a3 += b * first[3][j];
+            if constexpr (Components == 2) {
+                b0 += b * second[0][j];
+                b1 += b * second[1][j];
+                b2 += b * second[2][j];
+                b3 += b * second[3][j];
+            }
+        }
+        const double half_delta = 0.5 * delta;
+        const double omega = std::sqrt(std::max(half_delta * half_delta + p, 0.0));
+        const SineCosine sc = sine_cosine(omega);
+        const double sinc = omega > 1e-6 ? sc.sine / omega : 1.0 - omega * omega / 6.0;
+        out[w] = evaluate(w, active_component(a0, a1, a2, a3, sc.cosine, sinc, half_delta),
+                          active_component(b0, b1, b2, b3, sc.cosine, sinc, half_delta));
+    }
+}
+
+}  // namespace
+
+void interpolated_active_transmission(const SpectralNodes& nodes, const ActiveNodeFields& fields, const NodeValues& phase_difference,
+                                      const PlateAnalyzers* analyzers, double* out) {
+    const auto norm = [](ComplexComponent c) { return c.real * c.real + c.imaginary * c.imaginary; };
+    if (fields.components == 1) {
+        over_grid_active<1>(nodes, fields, phase_difference, out, [&](int, ComplexComponent u, ComplexComponent) { return norm(u); });
+        return;
+    }
+    if (analyzers == nullptr) {
+        over_grid_active<2>(nodes, fields, phase_difference, out,
+                            [&](int, ComplexComponent u, ComplexComponent v) { return norm(u) + norm(v); });
+        return;
+    }
+    const auto& b = analyzers->lab;
+    const double *re_x0 = b[0][0], *re_y0 = b[0][1], *im_x0 = b[0][2], *im_y0 = b[0][3];
+    const double *re_x1 = b[1][0], *re_y1 = b[1][1], *im_x1 = b[1][2], *im_y1 = b[1][3];
+    const bool second = analyzers->count == 2;
+    // |bᵀ(R + iI)|² = (b_re·R − b_im·I)² + (b_re·I + b_im·R)² with the components (x, y).
+    const auto analyzed = [&](double re_x, double re_y, double im_x, double im_y, ComplexComponent x, ComplexComponent y) {
+        const double real = re_x * x.real + re_y * y.real - im_x * x.imaginary - im_y * y.imaginary;
+        const double imaginary = re_x * x.imaginary + re_y * y.imaginary + im_x * x.real + im_y * y.real;
+        return real * real + imaginary * imaginary;
+    };
+    over_grid_active<2>(nodes, fields, phase_difference, out, [&](int w, ComplexComponent x, ComplexComponent y) {
+        const double first = analyzed(re_x0[w], re_y0[w], im_x0[w], im_y0[w], x, y);
+        return second ? first + analyzed(re_x1[w], re_y1[w], im_x1[w], im_y1[w], x, y) : first;
+    });
+}
+
 }  // namespace petroscope::detail

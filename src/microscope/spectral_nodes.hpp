@@ -64,4 +64,21 @@ struct PlateAnalyzers {
 void interpolated_transmission(const SpectralNodes& nodes, const std::array<NodeValues, 4>& lab_fields,
                                const NodeValues& phase_difference, const PlateAnalyzers& analyzers, double* out);
 
+/// An optically active crystal's node quantities for one or two components of the field leaving the slab
+/// (projected on the analyzer; on ŝ and ρ̂ without it; on x and y before a plate): per component the fields
+/// F₀ = E_fast·t_fast and F₁ = E_slow·t_slow, and the coupled fields G₀ = b₀·E_fast·t_slow and
+/// G₁ = b₁·E_slow·t_fast (conoscope_kernel.hpp, mode_field and coupled_field), and the product b₀b₁.
+struct ActiveNodeFields {
+    int components = 1;
+    std::array<std::array<NodeValues, 4>, 2> component{};  // [k]: F₀, F₁, G₀, G₁
+    NodeValues coupling_product{};
+};
+
+/// Transmission at every grid wavelength of an optically active crystal: each component of the field leaving
+/// the slab is R + iI with R = cos Ω·(F₀ + F₁) + (sin Ω/Ω)·(G₁ − G₀) and I = (sin Ω/Ω)·(δ/2)·(F₀ − F₁),
+/// Ω = √((δ/2)² + b₀b₁) (conoscope_kernel.cpp, active_amplitudes). Without `analyzers` the result is Σ_k |R_k + iI_k|²;
+/// with them (a plate; the components are lab x and y) Σ over the analyzers b of |bᵀ(R + iI)|².
+void interpolated_active_transmission(const SpectralNodes& nodes, const ActiveNodeFields& fields, const NodeValues& phase_difference,
+                                      const PlateAnalyzers* analyzers, double* out);
+
 }  // namespace petroscope::detail

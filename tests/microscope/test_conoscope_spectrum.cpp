@@ -5,6 +5,8 @@
 #include "conoscope_evaluator.hpp"
 #include "conoscope_fixtures.hpp"
 
+#include "petroscope/microscope/polarizing_microscope.hpp"
+
 #include "petroscope/spectral/color.hpp"
 #include "petroscope/spectral/wavelength_grid.hpp"
 
@@ -146,6 +148,28 @@ TEST(ConoscopeSpectrum, PlatesAndPolarsInAnyPositionMatchEveryWavelengthSolved) 
         settings.plate.reset();
         expect_close_to_exact(settings, mineral, thickness_label(each.mineral, each.thickness_um) + " without a plate", 0.95);
     }
+}
+
+TEST(ConoscopeSpectrum, OpticallyActiveQuartzMatchesEveryWavelengthSolved) {
+    // The coupled fields and b₀b₁ interpolated with the rest (spectral_nodes.hpp, ActiveNodeFields): basal
+    // plates from 300 µm to 5 mm, tilted, both hands, with a λ/4 mica plate, and with the analyzer out.
+    const MineralCatalog& minerals = testing::repository_minerals();
+    const Mineral& quartz = minerals.find("quartz");
+    for (const double thickness_um : {300.0, 1000.0, 5000.0}) {
+        for (const double tilt_deg : {0.0, 25.0}) {
+            ConoscopeSettings settings = tilted(quartz, Cut::optic_axis, tilt_deg, thickness_um);
+            settings.gyration = mineral_gyration(quartz, tilt_deg == 0.0 ? Handedness::right : Handedness::left);
+            expect_close_to_exact(settings, quartz, thickness_label("active quartz", thickness_um) + ", tilt " + std::to_string(static_cast<int>(tilt_deg)),
+                                  0.95);
+        }
+    }
+    ConoscopeSettings settings = tilted(quartz, Cut::optic_axis, 0.0, 2000.0);
+    settings.gyration = mineral_gyration(quartz, Handedness::right);
+    settings.plate = make_accessory_plate(PlateKind::mica, minerals.find("muscovite"), 45.0);
+    expect_close_to_exact(settings, quartz, "active quartz 2 mm with a quarter-wave plate", 0.95);
+    settings.plate.reset();
+    settings.analyzer_in = false;
+    expect_close_to_exact(settings, quartz, "active quartz 2 mm, analyzer out", 0.95);
 }
 
 // The interpolation itself: exact for polynomials of degree 7 in σ, with a tail estimate (the Chebyshev

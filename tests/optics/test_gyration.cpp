@@ -98,7 +98,7 @@ Eigen::Matrix3cd landau_matrix(const Eigen::Vector3d& s_hat, double n, const Eig
 
 // The closed form of the uniaxial gyrotropic crystal (ε = diag(o, o, e), g = diag(g₁, g₁, g₃), θ from the axis):
 // det M = (n² − o)(n²P − oe) − n²G + n⁴S = 0 with P = o sin²θ + e cos²θ, G = e g₃² cos²θ + o g₁² sin²θ and
-// S = sin²θ cos²θ (g₃ − g₁)² (worked out from Landau & Lifshitz vol. 8 eq. 101.4 with G = g·N; docs/theory.md).
+// S = sin²θ cos²θ (g₃ − g₁)² (worked out from Landau & Lifshitz vol. 8 §101 with G = g·N; docs/theory.md §9).
 // Divided by P it is (1 + S/P)u² − (o + u_e + G/P)u + o·u_e = 0 for u = n², u_e = oe/P the extraordinary index²;
 // its discriminant is written with u_e − o = o(e − o)sin²θ/P so that no difference of nearly equal numbers
 // appears near the axis, where the two roots differ by only ~g.

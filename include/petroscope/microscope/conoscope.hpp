@@ -51,7 +51,7 @@ struct ConoscopeSettings {
     /// With `mounting`: the coherent 4×4 solution (every multiple reflection) instead of single pass.
     bool exact = false;
     /// Natural optical activity: the crystal's gyration tensor in its indicatrix frame; empty for an inactive
-    /// crystal. An active crystal solves every wavelength (no spectral nodes) and takes no mounting.
+    /// crystal.
     GyrationFunction gyration;
 
     /// Checks every field; throws InputError naming the setting and the accepted range.
@@ -64,8 +64,7 @@ struct ConoscopeSettings {
 Eigen::Vector2d conoscope_tangential_wavevector(const ConoscopeSettings& settings, int column, int row);
 
 /// Whether a figure of `settings` is interpolated from spectral nodes: SpectrumSampling::interpolated, an
-/// immersed slab (no mounting), an optically inactive crystal and at least 2·kSpectralNodeCount distinct
-/// wavelengths.
+/// immersed slab (no mounting) and at least 2·kSpectralNodeCount distinct wavelengths.
 bool interpolates_spectrum(const ConoscopeSettings& settings);
 
 /// Transmission spectrum of one image point: intensity after the analyzer relative to the incident

@@ -18,6 +18,7 @@ namespace petroscope {
 struct OpticalLayer {
     Eigen::Matrix3cd epsilon = Eigen::Matrix3cd::Identity();
     double thickness_um = 0.0;
+    Eigen::Matrix3d chirality = Eigen::Matrix3d::Zero();  // optical activity, lab frame (optics/berreman.hpp); zero: inactive
 };
 
 

@@ -27,6 +27,7 @@ using GyrationFunction = std::function<Eigen::Matrix3d(double wavelength_nm)>;
 struct DispersiveMedium {
     PrincipalIndexFunction principal_n;
     PrincipalIndexFunction principal_kappa;  // empty: transparent
+    GyrationFunction gyration;               // empty: optically inactive
     Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();
 
     /// The mineral's dispersion; the mineral must outlive the medium.
@@ -34,6 +35,8 @@ struct DispersiveMedium {
     /// n + iκ along the axes at `wavelength_nm` (time dependence exp(−iωt): absorption has Im ε > 0).
     OpticalMedium at(double wavelength_nm) const;
     Eigen::Matrix3cd permittivity(double wavelength_nm) const { return at(wavelength_nm).permittivity(); }
+    /// The chirality tensor κ in the lab frame (optics/gyration.hpp) of the gyration turned by the axes; zero when inactive.
+    Eigen::Matrix3d chirality(double wavelength_nm) const;
 };
 
 /// The gyration tensor of `mineral`'s `handedness` form in its indicatrix frame (optics/gyration.hpp); empty for
@@ -133,7 +136,8 @@ public:
     double analyzed_intensity(const Eigen::Matrix2cd& section_jones_sp, std::size_t wavelength, std::size_t direction) const;
     /// The section's layers at wavelength index `wavelength`, the crystal (index 2) with `crystal` and
     /// `crystal_thickness_um`.
-    std::vector<OpticalLayer> section_layers(std::size_t wavelength, const Eigen::Matrix3cd& crystal, double crystal_thickness_um) const;
+    std::vector<OpticalLayer> section_layers(std::size_t wavelength, const Eigen::Matrix3cd& crystal, const Eigen::Matrix3d& crystal_chirality,
+                                             double crystal_thickness_um) const;
 
 private:
     const MicroscopeSettings& settings_;
