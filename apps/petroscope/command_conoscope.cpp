@@ -102,9 +102,7 @@ nlohmann::json conoscope_sidecar(const ConoscopeRequest& request, const Conoscop
                          ? "modes solved at " + std::to_string(kSpectralNodeCount) +
                                " wavelengths and interpolated to the others; every wavelength solved near the optic axes and where "
                                "the interpolation's error estimate is too large (docs/conoscope.md)"
-                         : settings.spectrum == SpectrumSampling::exact ? "every wavelength solved (--exact-spectrum)"
-                         : settings.gyration                                ? "every wavelength solved (optically active crystal)"
-                                                                            : "every wavelength solved"},
+                         : settings.spectrum == SpectrumSampling::exact ? "every wavelength solved (--exact-spectrum)" : "every wavelength solved"},
         {"exposure", request.light.exposure},
         {"model", settings.exact ? "exact coherent 4x4 transfer matrix (Berreman) through the whole section, per image point"
                   : settings.mounting ? "single-pass Jones through the whole section (every layer's exact waves, Fresnel at every interface), per image point"

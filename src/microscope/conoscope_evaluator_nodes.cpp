@@ -28,7 +28,7 @@ double coupling_product_tolerance(const NodeValues& product) {
 
 // One component of an active crystal's node fields, w_s·(s part) + w_p·(p part): F₀, F₁, G₀, G₁
 // (spectral_nodes.hpp, ActiveNodeFields) from mode_field (s fast, s slow, p fast, p slow) and coupled_field.
-std::array<NodeValues, 4> active_component(const std::array<NodeValues, 4>& fields, const std::array<NodeValues, 4>& coupled, double w_s,
+std::array<NodeValues, 4> projected_active_fields(const std::array<NodeValues, 4>& fields, const std::array<NodeValues, 4>& coupled, double w_s,
                                            double w_p) {
     std::array<NodeValues, 4> component{};
     for (std::size_t j = 0; j < kSpectralNodes; ++j) {
@@ -153,19 +153,19 @@ void ConoscopeEvaluator::active_interpolated_side(const KernelScratch& scratch, 
     active.coupling_product = product;
     if (!plate_jones_lab_.empty()) {
         active.components = 2;
-        active.component = {active_component(fields, coupled, s_x, rho_x), active_component(fields, coupled, s_y, rho_y)};
+        active.component = {projected_active_fields(fields, coupled, s_x, rho_x), projected_active_fields(fields, coupled, s_y, rho_y)};
         PlateAnalyzers analyzers{polars_.analyzer_in ? 1 : 2, {}};
         for (std::size_t k = 0; k < 2; ++k) {
             for (std::size_t c = 0; c < 4; ++c) analyzers.lab[k][c] = spectral_samples_.plate_analyzer[k][c].data();
         }
         interpolated_active_transmission(*nodes_, active, phase, &analyzers, out);
     } else if (polars_.analyzer_in) {
-        active.component[0] = active_component(fields, coupled, polars_.analyzer.x() * s_x + polars_.analyzer.y() * s_y,
+        active.component[0] = projected_active_fields(fields, coupled, polars_.analyzer.x() * s_x + polars_.analyzer.y() * s_y,
                                                polars_.analyzer.x() * rho_x + polars_.analyzer.y() * rho_y);
         interpolated_active_transmission(*nodes_, active, phase, nullptr, out);
     } else {
         active.components = 2;
-        active.component = {active_component(fields, coupled, 1.0, 0.0), active_component(fields, coupled, 0.0, 1.0)};
+        active.component = {projected_active_fields(fields, coupled, 1.0, 0.0), projected_active_fields(fields, coupled, 0.0, 1.0)};
         interpolated_active_transmission(*nodes_, active, phase, nullptr, out);
     }
 }

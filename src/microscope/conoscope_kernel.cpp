@@ -218,7 +218,7 @@ struct ActiveAmplitudes {
 [[gnu::always_inline]] inline ActiveAmplitudes active_amplitudes(double t0, double t1, double a, double b0, double b1) {
     const double omega = std::sqrt(a * a + b0 * b1);
     const SineCosine sc = sine_cosine(omega);
-    const double s = omega > 1e-6 ? sc.sine / omega : 1.0 - omega * omega / 6.0;
+    const double s = sinc_from_sine(omega, sc.sine);
     return {sc.cosine * t0 - s * b0 * t1, s * b1 * t0 + sc.cosine * t1, s * a * t0, -s * a * t1};
 }
 

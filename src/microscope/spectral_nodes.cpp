@@ -129,7 +129,7 @@ namespace {
 struct ComplexComponent {
     double real, imaginary;
 };
-[[gnu::always_inline]] inline ComplexComponent active_component(double f0, double f1, double g0, double g1, double cosine, double sinc,
+[[gnu::always_inline]] inline ComplexComponent component_field(double f0, double f1, double g0, double g1, double cosine, double sinc,
                                                                  double half_delta) {
     return {cosine * (f0 + f1) + sinc * (g1 - g0), sinc * half_delta * (f0 - f1)};
 }
@@ -165,9 +165,9 @@ void over_grid_active(const SpectralNodes& nodes, const ActiveNodeFields& fields
         const double half_delta = 0.5 * delta;
         const double omega = std::sqrt(std::max(half_delta * half_delta + p, 0.0));
         const SineCosine sc = sine_cosine(omega);
-        const double sinc = omega > 1e-6 ? sc.sine / omega : 1.0 - omega * omega / 6.0;
-        out[w] = evaluate(w, active_component(a0, a1, a2, a3, sc.cosine, sinc, half_delta),
-                          active_component(b0, b1, b2, b3, sc.cosine, sinc, half_delta));
+        const double sinc = sinc_from_sine(omega, sc.sine);
+        out[w] = evaluate(w, component_field(a0, a1, a2, a3, sc.cosine, sinc, half_delta),
+                          component_field(b0, b1, b2, b3, sc.cosine, sinc, half_delta));
     }
 }
 

@@ -102,7 +102,7 @@ OpticalSummary optical_summary(const Mineral& mineral, double wavelength_nm) {
         summary.sign = xyz[2] > xyz[0] ? "+" : "-";
         return summary;
     }
-    // Sorted indices: V_z from the nγ axis (physics notes §2); positive when V_z < 45°.
+    // Sorted indices: V_z from the nγ axis (docs/theory.md §1, "Binormals and biradials"); positive when V_z < 45°.
     const double v_z = binormal_angle_from_z(n);
     const double v_acute = std::min(v_z, std::numbers::pi / 2.0 - v_z);
     summary.two_v_deg = 2.0 * v_acute * 180.0 / std::numbers::pi;

@@ -129,9 +129,11 @@ PrincipalAxis read_axis(RecordReader& reader, const std::string& suffix, std::ve
     return axis;
 }
 
-// Largest rotatory power accepted, °/mm; beyond it a value is taken for a unit mistake (quartz turns 21.7 °/mm at
-// 589 nm: the same figure in °/cm or in µrad/µm would read 217 or 379).
+// Largest rotatory power accepted, °/mm, over the visible: beyond it a value is taken for a gross mistake (a
+// formula pole among the wavelengths, °/m instead of °/mm). Quartz turns 21.7 °/mm at 589 nm.
 constexpr double kMaxRotatoryPowerDegPerMm = 1000.0;
+// The rotatory power is checked every 5 nm over the CIE 1931 observer's range, 360 … 830 nm.
+constexpr double kCheckedFromNm = 360.0, kCheckedToNm = 830.0, kCheckStepNm = 5.0;
 
 // The rotatory power keys of an optical class, in the order of Mineral::rotatory_powers.
 std::vector<std::string> rotatory_power_keys(OpticalClass optical_class) {
@@ -147,6 +149,15 @@ std::vector<std::string> rotatory_power_keys(OpticalClass optical_class) {
 // reference wavelength, and the one along the optic axis (any direction when isotropic) positive: the record
 // gives the right-handed form.
 void read_rotatory_powers(RecordReader& reader, Mineral& mineral, std::vector<std::string>& valid) {
+    if (mineral.optical_class == OpticalClass::biaxial) {
+        for (const char* key : {"rotatory_power", "rotatory_power_axis", "rotatory_power_normal"}) {
+            if (const Entry* entry = reader.find(key)) {
+                throw reader.error(*entry, "optical activity of biaxial crystals is not supported yet (rotatory powers are read for "
+                                           "isotropic and uniaxial records, minerals/README.md)");
+            }
+        }
+        return;
+    }
     const std::vector<std::string> keys = rotatory_power_keys(mineral.optical_class);
     std::vector<const Entry*> entries;
     for (const std::string& key : keys) {
@@ -165,12 +176,14 @@ void read_rotatory_powers(RecordReader& reader, Mineral& mineral, std::vector<st
         }
         RotatoryPower power{keys[i], parse_model(reader, *entries[i], keys[i]),
                             reader.require(keys[i] + ".source", "where the numbers of " + keys[i] + " come from").value};
-        const double value = power.deg_per_mm(mineral.reference_wavelength_nm);
-        if (!std::isfinite(value) || std::abs(value) > kMaxRotatoryPowerDegPerMm) {
-            std::ostringstream what;
-            what << keys[i] << " evaluates to " << value << " deg/mm at " << mineral.reference_wavelength_nm
-                 << " nm; expected a finite rotatory power within ±" << kMaxRotatoryPowerDegPerMm << " deg/mm";
-            throw reader.error(*entries[i], what.str());
+        for (double wavelength_nm = kCheckedFromNm; wavelength_nm <= kCheckedToNm; wavelength_nm += kCheckStepNm) {
+            const double value = power.deg_per_mm(wavelength_nm);
+            if (!std::isfinite(value) || std::abs(value) > kMaxRotatoryPowerDegPerMm) {
+                std::ostringstream what;
+                what << keys[i] << " evaluates to " << value << " deg/mm at " << wavelength_nm << " nm; expected a finite rotatory power within ±"
+                     << kMaxRotatoryPowerDegPerMm << " deg/mm from " << kCheckedFromNm << " to " << kCheckedToNm << " nm";
+                throw reader.error(*entries[i], what.str());
+            }
         }
         mineral.rotatory_powers.push_back(std::move(power));
     }

@@ -36,8 +36,7 @@ double max_abs(const Eigen::Matrix3cd& m) { return m.cwiseAbs().maxCoeff(); }
 
 bool amplitude_varies(Complex q) { return std::abs(q.imag()) > kEvanescentTolerance * (1.0 + std::abs(q)); }
 
-// Time-averaged z flux of a tangential field, S_z = ½ Re(E × H*)_z = ½ Re(ψ₁ψ₂* + ψ₃ψ₄*) (Berreman 1972;
-// physics notes §3). The same in the lab and plane-of-incidence frames (a rotation about z).
+// Time-averaged z flux of a tangential field, S_z = ½ Re(E × H*)_z = ½ Re(ψ₁ψ₂* + ψ₃ψ₄*) (Berreman 1972). The same in the lab and plane-of-incidence frames (a rotation about z).
 double flux_of(const Eigen::Vector4cd& psi) {
     return 0.5 * (psi[0] * std::conj(psi[1]) + psi[2] * std::conj(psi[3])).real();
 }
@@ -166,7 +165,7 @@ Eigen::Matrix4cd chiral_delta_matrix(const Medium& medium) {
 }
 
 // Berreman's Δ for the x–z plane of incidence, dψ/dz = i k₀ Δ ψ, ψ = (E_x, H_y, E_y, −H_x) (Berreman,
-// JOSA 62, 502 (1972), with μ = 1 and no optical activity; physics notes §3). Derived from
+// JOSA 62, 502 (1972), eq. 10, with μ = 1; an optically active medium takes chiral_delta_matrix). Derived from
 // ∇ × E = i k₀ H, ∇ × H = −i k₀ ε E with ∂/∂x = i k₀ ξ, ∂/∂y = 0, eliminating E_z and H_z.
 Eigen::Matrix4cd delta_matrix(const Eigen::Matrix3cd& e, double xi) {
     const Complex e33 = e(2, 2);

@@ -1,5 +1,6 @@
 #include "petroscope/optics/slab.hpp"
 
+#include "petroscope/core/fast_math.hpp"
 #include "petroscope/optics/eigenmodes.hpp"
 
 #include <Eigen/Dense>
@@ -302,7 +303,7 @@ Eigen::Matrix2cd slab_propagation(const SlabTransfer& transfer, double k0_thickn
     }
     const double half_splitting = 0.5 * k0_thickness * (transfer.q[0] - transfer.q[1]);
     const double omega = std::sqrt(half_splitting * half_splitting + k0_thickness * k0_thickness * c[0] * c[1]);
-    const double sinc = omega > 1e-6 ? std::sin(omega) / omega : 1.0 - omega * omega / 6.0;
+    const double sinc = sinc_from_sine(omega, std::sin(omega));
     const std::complex<double> i(0.0, 1.0);
     propagation << std::cos(omega) + i * sinc * half_splitting, -sinc * k0_thickness * c[0],
                    sinc * k0_thickness * c[1], std::cos(omega) - i * sinc * half_splitting;

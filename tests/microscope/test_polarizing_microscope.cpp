@@ -69,7 +69,7 @@ TEST(GrainResponse, CrossedPolarsMatchRetarderWithFresnelFactors) {
 // Optical activity in the section: a basal quartz plate, 1 mm, at normal incidence (NA 0), turns the plane by ρd,
 // so that crossed/(crossed + parallel) = sin²(ρd) whatever the Fresnel factors of the isotropic layers, single pass
 // and coherent (the reflections between the faces are of order R ≈ 1e-5, and a round trip undoes the rotation, which
-// is reciprocal). The two circular modes' face transmissions differ only in second order in g ≈ 4e-5: to 1e-6.
+// is reciprocal). The two circular modes' face transmissions differ only in second order in g ≈ 7e-5: to 1e-6.
 TEST(GrainResponse, ABasalQuartzPlateTurnsThePlaneByItsRotatoryPower) {
     const double n_o = 1.54425, n_e = 1.55336, wavelength_nm = 589.3, d_um = 1000.0;
     const double rho_axis = 21.72 * kPi / 180.0 * 1e-3;  // rad/µm

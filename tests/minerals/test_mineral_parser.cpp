@@ -365,7 +365,7 @@ TEST(MineralParser, RotatoryPowersOfAUniaxialCrystal) {
 
 TEST(MineralParser, BadRotatoryPowersAreRefusedWithTheLineAndReason) {
     // One component alone, a missing source, a bad model, out of range, negative along the axis (the record gives
-    // the right-handed form), and on an isotropic or biaxial record the uniaxial keys are unknown.
+    // the right-handed form), a pole among the wavelengths, a biaxial record, uniaxial keys on an isotropic one.
     EXPECT_CONTAINS(parse_error(join(without(without(active_uniaxial_lines(), 11), 10))), "rotatory_power_normal is missing");
     EXPECT_CONTAINS(parse_error(join(without(active_uniaxial_lines(), 9))), "missing key 'rotatory_power_axis.source'");
     const std::string model = parse_error(join(with(active_uniaxial_lines(), 10, "rotatory_power_normal: drude 1")));
@@ -376,8 +376,31 @@ TEST(MineralParser, BadRotatoryPowersAreRefusedWithTheLineAndReason) {
     const std::string sign = parse_error(join(with(active_uniaxial_lines(), 8, "rotatory_power_axis: constant -21.7")));
     EXPECT_CONTAINS(sign, "t.txt:8:");
     EXPECT_CONTAINS(sign, "right-handed");
-    EXPECT_CONTAINS(parse_error(join(plus(plus(biaxial_lines(), "rotatory_power_axis: constant 1"), "rotatory_power_axis.source: s"))),
+    // A Drude pole among the visible wavelengths (0.45 µm) is refused although the value at 589.3 nm is fine.
+    const std::string pole = parse_error(join(with(active_uniaxial_lines(), 8, "rotatory_power_axis: drude 7 0.45")));
+    EXPECT_CONTAINS(pole, "t.txt:8:");
+    EXPECT_CONTAINS(pole, "from 360 to 830 nm");
+    const std::string biaxial = parse_error(join(plus(plus(biaxial_lines(), "rotatory_power_axis: constant 1"), "rotatory_power_axis.source: s")));
+    EXPECT_CONTAINS(biaxial, "t.txt:10:");
+    EXPECT_CONTAINS(biaxial, "biaxial crystals is not supported yet");
+    // The uniaxial keys on an isotropic record are unknown there.
+    EXPECT_CONTAINS(parse_error("name: g\nsystem: cubic\nclass: isotropic\nn: constant 1.5\nn.source: x\nrotatory_power_axis: constant 3\n"
+                                "rotatory_power_axis.source: s"),
                     "unknown key 'rotatory_power_axis'");
+}
+
+TEST(MineralParser, RotatoryPowerOfAnIsotropicCrystalIsTheSameAlongEveryAxis) {
+    const Mineral cubic = parse_mineral("name: chlorate\nsystem: cubic\nclass: isotropic\nn: constant 1.515\nn.source: x\n"
+                                        "rotatory_power: constant 3.1\nrotatory_power.source: s",
+                                        "c.txt");
+    ASSERT_TRUE(cubic.optically_active());
+    const Eigen::Vector3d rho = cubic.principal_rotatory_power(500.0);
+    EXPECT_NEAR(rho[0], 3.1 * std::numbers::pi / 180.0 * 1e-3, 1e-18);
+    EXPECT_EQ(rho[0], rho[1]);
+    EXPECT_EQ(rho[1], rho[2]);
+    EXPECT_CONTAINS(parse_error("name: chlorate\nsystem: cubic\nclass: isotropic\nn: constant 1.515\nn.source: x\nrotatory_power: constant -3.1\n"
+                                "rotatory_power.source: s"),
+                    "right-handed");
 }
 
 }  // namespace

@@ -79,4 +79,8 @@ inline SineCosine sine_cosine(double x) {
     return {sign * fast_math_detail::sine_series(r), sign * fast_math_detail::cosine_series(r)};
 }
 
+/// sin x / x from x ≥ 0 and its sine, with the series 1 − x²/6 below 1e-6 (where the quotient loses digits and
+/// the next term, x⁴/120, is below 1e-26).
+inline double sinc_from_sine(double x, double sine_of_x) { return x > 1e-6 ? sine_of_x / x : 1.0 - x * x / 6.0; }
+
 }  // namespace petroscope

@@ -27,7 +27,7 @@ struct OpticalLayer {
 /// thickness d in µm (its own thickness_um is not used). Columns: incident (s, p); rows: transmitted (s, p);
 /// s = ŝ, p with its transverse part along +ρ̂ (docs/conventions.md), ρ̂ = ξ/|ξ| (x̂ at ξ = 0).
 /// At each interface the forward waves of one medium are matched to the forward waves of the next with the
-/// reflected waves eliminated (Berreman 1972, physics notes §3): an exact 2×2 reduction of the 4×4 boundary
+/// reflected waves eliminated (Berreman 1972; docs/theory.md §4): an exact 2×2 reduction of the 4×4 boundary
 /// problem for the waves going up.
 struct ModalJones {
     std::array<Eigen::Matrix2cd, 2> term;

@@ -1,6 +1,6 @@
 #pragma once
 // Berreman's 4×4 transfer-matrix method for stacks of anisotropic, possibly absorbing, plane-parallel layers
-// (Berreman, JOSA 62, 502 (1972); Yeh, JOSA 69, 742 (1979); Schubert, PRB 53, 4265 (1996); physics notes §3).
+// (Berreman, JOSA 62, 502 (1972); Yeh, JOSA 69, 742 (1979); Schubert, PRB 53, 4265 (1996); docs/theory.md §4).
 // An independent solver: it shares no code with slab.hpp, eigenmodes.hpp or indicatrix.hpp, so that it can
 // cross-check them. Time dependence exp(−iωt): absorbing media have Im ε > 0 and forward waves decay toward +z.
 #include <Eigen/Core>
@@ -12,7 +12,7 @@
 namespace petroscope {
 
 /// A plane-wave mode of a homogeneous medium for a tangential wavevector ξ (units of k₀), from the
-/// eigen-decomposition of Berreman's Δ matrix (Berreman, JOSA 62, 502 (1972); physics notes §3).
+/// eigen-decomposition of Berreman's Δ matrix (Berreman, JOSA 62, 502 (1972); docs/theory.md §4).
 ///
 /// Normalisation. Isotropic media (ε = n² I): s has E = ŝ; p has E = ±(q ρ̂ − |ξ| ẑ)/n (+ forward,
 /// − backward; Re n ≥ 0), a unit E whose transverse part points along +ρ̂ for propagating waves

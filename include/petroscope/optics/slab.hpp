@@ -12,7 +12,7 @@
 namespace petroscope {
 
 /// The direction of a plane wave crossing the stack, given by its tangential wavevector in units of k₀,
-/// ξ = n·sin θ·(cos φ, sin φ), conserved across every planar interface (physics notes §3).
+/// ξ = n·sin θ·(cos φ, sin φ), conserved across every planar interface (docs/theory.md §4).
 struct TangentialWavevector {
     Eigen::Vector2d xi = Eigen::Vector2d::Zero();
     Eigen::Vector2d radial = Eigen::Vector2d::UnitX();      // ρ̂ = ξ/|ξ| (x̂ at normal incidence): p direction
@@ -28,7 +28,7 @@ struct SlabMode {
 };
 
 /// The tangential field ψ = (E·ρ̂, H·ŝ, E·ŝ, −H·ρ̂) of a mode in the plane-of-incidence frame of
-/// `direction` (Berreman's ordering, physics notes §3).
+/// `direction` (Berreman's ordering, docs/conventions.md "Fields and bases").
 Eigen::Vector4d tangential_field(const SlabMode& mode, const TangentialWavevector& direction);
 
 /// Time reversal of a mode of a lossless medium: N → −N, E → E, H → −H. The backward modes for ξ are
