@@ -42,7 +42,7 @@ const std::map<std::string, std::vector<PhotoParameter>>& free_groups() {
 }
 
 struct FitOptions {
-    std::string photo, mineral = "muscovite", cut, thickness, thickness_range, output_dir;
+    std::string photo, mineral = "muscovite", cut, thickness, thickness_range, output_dir, handedness = "right";
     std::string free = "thickness,center,scale,rotation,white-balance,black,gamma,blur";
     std::vector<std::string> fixed;
     double azimuth_deg = 0.0, tilt_deg = 0.0, na = 0.85, polarizer_deg = 0.0, analyzer_deg = 90.0, surround_n = 1.54;
@@ -91,6 +91,7 @@ nlohmann::json report_json(const ConoscopeFitResult& result, const FitOptions& o
             {"polarizer_deg", options.polarizer_deg},
             {"analyzer_deg", options.analyzer_deg},
             {"surround_n", options.surround_n},
+            {"handedness", options.handedness},
             {"thickness_search_um", {fit_options.thickness_min_um, fit_options.thickness_max_um}},
             {"acceptable", result.acceptable},
             {"verdict", result.verdict},
@@ -132,6 +133,7 @@ void run_fit_conoscope(const FitOptions& options, const std::string& minerals_di
     setup.polarizer_deg = options.polarizer_deg;
     setup.analyzer_deg = options.analyzer_deg;
     setup.surround_n = options.surround_n;
+    setup.handedness = with_option("--handedness", [&] { return parse_handedness(options.handedness); });
     const ConoscopePhotoModel model = conoscope_photo_model(mineral, setup);
 
     ConoscopeFitOptions fit;
@@ -250,6 +252,8 @@ void add_fit_command(CLI::App& app, const std::string& minerals_dir) {
     conoscope->add_option("--polarizer-deg", options->polarizer_deg, "Polarizer direction in the lab")->capture_default_str();
     conoscope->add_option("--analyzer-deg", options->analyzer_deg, "Analyzer direction in the lab")->capture_default_str();
     conoscope->add_option("--surround-n", options->surround_n, "Index of the medium around the slab")->capture_default_str();
+    conoscope->add_option("--handedness", options->handedness, "right | left: the form of an optically active mineral (quartz)")
+        ->capture_default_str();
     conoscope->add_option("--candidates", options->candidates, "Thickness minima refined by Ceres")->capture_default_str()->check(CLI::Range(1, 20));
     conoscope->add_flag("--no-encoding-check", options->no_encoding_check,
                         "For a JPEG photo: skip repeating its encoding on the best fit (faster; the 1-sigma values then leave out\n"

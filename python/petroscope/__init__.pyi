@@ -189,6 +189,7 @@ def fit_conoscope(
     ),
     fixed: dict[str, float] = {},
     candidates: int = 3,
+    handedness: str = "right",
     progress: Progress = None,
 ) -> dict[str, object]: ...
 def orthoscope(

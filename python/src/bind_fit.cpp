@@ -56,11 +56,11 @@ py::dict fit_conoscope(const py::array& photo_array, const std::string& mineral,
                        double numerical_aperture, double polarizer_deg, double analyzer_deg, double surround_n, std::optional<double> thickness_um,
                        std::optional<std::pair<double, double>> thickness_range_um, double tilt_deg, double azimuth_deg,
                        const std::vector<std::string>& free, const std::map<std::string, double>& fixed, int candidates,
-                       const py::object& progress) {
+                       const std::string& handedness, const py::object& progress) {
     const Image photo = image_argument(photo_array, "photo");
     const ConoscopePhotoSetup setup{.cut = cut ? std::optional(parse_cut(*cut)) : std::nullopt, .light = light_argument(light),
                                     .numerical_aperture = numerical_aperture, .polarizer_deg = polarizer_deg,
-                                    .analyzer_deg = analyzer_deg, .surround_n = surround_n};
+                                    .analyzer_deg = analyzer_deg, .surround_n = surround_n, .handedness = parse_handedness(handedness)};
     ConoscopeFitOptions options;
     options.initial = default_photo_parameters(photo.width, photo.height);
     at(options.initial, PhotoParameter::tilt_deg) = tilt_deg;
@@ -226,7 +226,7 @@ void bind_fit(py::module_& module) {
                py::arg("analyzer_deg") = 90.0, py::arg("surround_n") = 1.54, py::arg("thickness_um") = py::none(),
                py::arg("thickness_range_um") = py::none(), py::arg("tilt_deg") = 0.0, py::arg("azimuth_deg") = 0.0,
                py::arg("free") = default_free, py::arg("fixed") = std::map<std::string, double>{}, py::arg("candidates") = 3,
-               py::arg("progress") = py::none(),
+               py::arg("handedness") = "right", py::arg("progress") = py::none(),
                R"(Fits a photo of a conoscopic figure: the slab's thickness, the figure's centre, scale and rotation,
 the cut's tilt, the camera's gains, black level, gamma and blur (docs/fitting.md).
 
@@ -236,7 +236,8 @@ mineral, cut, light, numerical_aperture, polarizer_deg, analyzer_deg, surround_n
   thickness_range_um: (min, max) to search instead. tilt_deg, azimuth_deg: the cut's starting tilt.
 free: the parameters fitted, by name (thickness_um, center_x_px, center_y_px, field_radius_px,
   rotation_deg, tilt_deg, azimuth_deg, gain_r, gain_g, gain_b, black_level, gamma, blur_variance_px2);
-  fixed: {name: value} held at a value. candidates: thickness minima refined.
+  fixed: {name: value} held at a value. candidates: thickness minima refined. handedness: 'right' or 'left',
+  the form of an optically active mineral (quartz).
 progress: called with the fraction done; return False to cancel. Ctrl-C cancels.
 
 Returns a dict: values, sigma (1 sigma, None where fixed or not determined), free, identifiable (by

@@ -2,6 +2,7 @@
 
 #include "petroscope/api/crystal_orientation.hpp"
 #include "petroscope/core/error.hpp"
+#include "petroscope/microscope/polarizing_microscope.hpp"
 
 #include <cmath>
 #include <tuple>
@@ -25,7 +26,7 @@ ConoscopePhotoModel conoscope_photo_model(const Mineral& mineral, const Conoscop
         return cut_orientation(cut, optical_class, reference_n, azimuth_deg, tilt_deg);
     };
     model.rgb_per_transmission = rgb_per_transmission(setup.light);
-    model.leaves_out_optical_activity = mineral.optically_active();
+    model.settings.gyration = mineral_gyration(mineral, setup.handedness);
     return model;
 }
 

@@ -590,10 +590,6 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
                                        : "no acceptable fit: the best model explains only " +
                                              format_significant(100.0 * statistics.explained_variance, 3) + "% of the photo's variance (cost " +
                                              format_significant(best_cost, 4) + " per residual, rms residual " + format_significant(statistics.rms, 3) + ")";
-    if (model.leaves_out_optical_activity) {
-        result.warnings.push_back("the model leaves out the crystal's optical activity (not yet in the fits): near the optic axis of a "
-                                  "plate thicker than about 0.2 mm the photo shows light the model has not");
-    }
     reached(1.0);
     return result;
 }

@@ -130,14 +130,17 @@ void PhotoModelEvaluator::linear(const std::vector<InterferenceTerms>& terms, co
             const double attenuation = std::exp(-0.5 * blur2_px2 * d2 * g2);
             const double rate = t.phase_per_um + blur2_px2 * half_laplacian;  // ∂phase/∂d
             const double phase = rate * thickness_um;
-            const double cosine = std::cos(phase);
-            const double fringe = t.modulation * attenuation;
-            rgb += model_.rgb_per_transmission[w] * (t.mean + fringe * cosine);
+            const double cosine = std::cos(phase), sine = std::sin(phase);
+            // The cosine fringe and, for an optically active crystal, the sine one (InterferenceTerms).
+            const double fringe = t.modulation * attenuation, sine_fringe = t.sine_modulation * attenuation;
+            rgb += model_.rgb_per_transmission[w] * (t.mean + fringe * cosine + sine_fringe * sine);
             if (derivatives) {
-                const double sine = std::sin(phase);
-                const double dt = -fringe * (sine * rate + cosine * blur2_px2 * thickness_um * g2);
+                const double damping = blur2_px2 * thickness_um * g2;  // −∂(ln attenuation)/∂d
+                const double dt = -fringe * (sine * rate + cosine * damping) + sine_fringe * (cosine * rate - sine * damping);
                 d_thickness += model_.rgb_per_transmission[w] * dt;
-                d_blur2 += model_.rgb_per_transmission[w] * (-fringe * (0.5 * d2 * g2 * cosine + sine * half_laplacian * thickness_um));
+                const double shift = half_laplacian * thickness_um;  // ∂phase/∂blur²
+                d_blur2 += model_.rgb_per_transmission[w] * (-fringe * (0.5 * d2 * g2 * cosine + sine * shift) +
+                                                             sine_fringe * (cosine * shift - 0.5 * d2 * g2 * sine));
             }
         }
         out.rgb[static_cast<std::size_t>(k)] = rgb;

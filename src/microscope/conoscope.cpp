@@ -66,7 +66,6 @@ ConoscopeTerms::ConoscopeTerms(const ConoscopeSettings& settings, const Principa
     : settings_(settings) {
     settings_.validate();
     if (settings_.plate || settings_.mounting) throw InputError("interference terms are defined for a slab without a plate or mounting only");
-    if (settings_.gyration) throw InputError("interference terms are defined for an optically inactive crystal only");
     settings_.spectrum = SpectrumSampling::exact;  // the terms are solved at every wavelength
     wavelength_count_ = settings_.wavelengths_nm.size();
     evaluator_ = std::make_unique<detail::ConoscopeEvaluator>(settings_, principal_n);

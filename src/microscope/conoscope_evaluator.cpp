@@ -172,7 +172,8 @@ void ConoscopeEvaluator::spectral_terms(const Eigen::Vector2d& xi, KernelScratch
         if (any_failed && scratch.failed[w] != 0) {
             out[w] = reference_terms(w, xi);
         } else {
-            out[w] = {scratch.mean[0][w], scratch.modulation[0][w], k0_per_um_[w] * (scratch.q[0][0][w] - scratch.q[0][1][w])};
+            const double phase_per_k0 = gyration_lab_.empty() ? scratch.q[0][0][w] - scratch.q[0][1][w] : scratch.phase_difference[0][w];
+            out[w] = {scratch.mean[0][w], scratch.modulation[0][w], k0_per_um_[w] * phase_per_k0, scratch.sine_modulation[0][w]};
         }
     }
 }
@@ -233,6 +234,7 @@ InterferenceTerms ConoscopeEvaluator::reference_terms(std::size_t w, const Eigen
     const auto transfers = reference_transfers(w, xi);
     if (!transfers) return {};
     const SlabTransfer& transfer = (*transfers)[0];
+    if (!gyration_lab_.empty()) return reference_active_terms(transfer, TangentialWavevector::from_xi(xi), w);
     int count = 0;
     const std::array<Eigen::Vector2d, 2> pairs = analyzed_amplitude_pairs(transfer, TangentialWavevector::from_xi(xi), count);
     InterferenceTerms terms{0.0, 0.0, k0_per_um_[w] * (transfer.q[0] - transfer.q[1])};
@@ -240,6 +242,28 @@ InterferenceTerms ConoscopeEvaluator::reference_terms(std::size_t w, const Eigen
         const PairTerms pair = pair_terms(pairs[k][0], pairs[k][1]);
         terms.mean += pair.mean;
         terms.modulation += pair.modulation;
+    }
+    return terms;
+}
+
+InterferenceTerms ConoscopeEvaluator::reference_active_terms(const SlabTransfer& transfer, const TangentialWavevector& direction,
+                                                             std::size_t w) const {
+    const Eigen::Vector2d incident(polars_.polarizer.dot(direction.azimuthal), polars_.polarizer.dot(direction.radial));
+    const Eigen::Vector2d t = transfer.entry * incident;
+    // The analyzed components' rows U (fast, slow): the analyzer's, or ŝ and ρ̂ without it.
+    const Eigen::Vector2d analyzer(polars_.analyzer.dot(direction.azimuthal), polars_.analyzer.dot(direction.radial));
+    const std::array<Eigen::Vector2d, 2> rows = polars_.analyzer_in
+                                                   ? std::array<Eigen::Vector2d, 2>{(analyzer.transpose() * transfer.exit).transpose(), Eigen::Vector2d::Zero()}
+                                                   : std::array<Eigen::Vector2d, 2>{transfer.exit.row(0).transpose(), transfer.exit.row(1).transpose()};
+    const Eigen::Vector2d& c = transfer.gyration_coupling;
+    const double half_split = 0.5 * (transfer.q[0] - transfer.q[1]);
+    const double width = std::sqrt(half_split * half_split + c[0] * c[1]);
+    InterferenceTerms terms{0.0, 0.0, k0_per_um_[w] * 2.0 * width, 0.0};
+    for (const Eigen::Vector2d& row : rows) {
+        const ActiveTerms part = active_terms(row[0], row[1], t[0], t[1], c[0], c[1], half_split, width > 0.0 ? 1.0 / width : 0.0);
+        terms.mean += part.mean;
+        terms.modulation += part.modulation;
+        terms.sine_modulation += part.sine_modulation;
     }
     return terms;
 }

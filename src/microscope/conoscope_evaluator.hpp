@@ -73,6 +73,8 @@ private:
     /// propagating mode (no power crosses the slab).
     std::optional<std::array<SlabTransfer, 2>> reference_transfers(std::size_t w, const Eigen::Vector2d& xi) const;
     InterferenceTerms reference_terms(std::size_t w, const Eigen::Vector2d& xi) const;
+    /// reference_terms of an optically active crystal (interference.hpp, active_terms).
+    InterferenceTerms reference_active_terms(const SlabTransfer& transfer, const TangentialWavevector& direction, std::size_t w) const;
     /// The analyzed field as pairs of real mode amplitudes (c₀, c₁), one pair per analyzed component (one
     /// behind the analyzer, two without it); `count` says how many.
     std::array<Eigen::Vector2d, 2> analyzed_amplitude_pairs(const SlabTransfer& transfer, const TangentialWavevector& direction,

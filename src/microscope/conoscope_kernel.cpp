@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
 
 namespace petroscope::detail {
 namespace {
@@ -241,7 +240,6 @@ struct ActiveAmplitudes {
 template <bool AnalyzerIn, KernelOutput Output, bool Plate, bool Active, int Side>
 void side_transmission(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch) {
     static_assert(!(Plate && Output != KernelOutput::transmission), "terms and fields are defined without a plate only");
-    static_assert(!(Active && Output == KernelOutput::terms), "terms are defined without optical activity only");
     constexpr bool Terms = Output == KernelOutput::terms;
     constexpr int other = 1 - Side;
     const double *rho_x0 = scratch.rho_x.data(), *rho_y0 = scratch.rho_y.data(), *reversal = scratch.reversal.data();
@@ -261,6 +259,7 @@ void side_transmission(const SampleCrystal& crystal, const PolarizerPair& polars
     const double *g_xy = gyration[3].data(), *g_xz = gyration[4].data(), *g_yz = gyration[5].data();
     double* out = scratch.transmission[Side].data();
     double *mean = scratch.mean[Side].data(), *modulation = scratch.modulation[Side].data();
+    double* sine_modulation = scratch.sine_modulation[Side].data();
     auto& field = scratch.mode_field[Side];
     double *field_s0 = field[0].data(), *field_s1 = field[1].data(), *field_p0 = field[2].data(), *field_p1 = field[3].data();
     double* phase = scratch.phase_difference[Side].data();
@@ -318,6 +317,19 @@ void side_transmission(const SampleCrystal& crystal, const PolarizerPair& polars
                                             s0[i] * rho_x + s2[i] * s_x, s0[i] * rho_y + s2[i] * s_y, ez_slow[i]);
             const double c0 = 0.5 * tau / (f0[i] * f1[i] + f2[i] * f3[i]), c1 = 0.5 * tau / (s0[i] * s1[i] + s2[i] * s3[i]);
             const double k0d = k0_thickness[i];
+            if constexpr (Terms) {
+                const double half_split = 0.5 * (qf[i] - qs[i]);
+                const double w = std::sqrt(half_split * half_split + c0 * c1);
+                const double inverse_w = w > 0.0 ? 1.0 / w : 0.0;
+                // The analyzed components: behind the analyzer one, U_m = a·(mode m's exit column); without it ŝ and ρ̂.
+                const ActiveTerms first = AnalyzerIn ? active_terms(a_s * e00 + a_p * e10, a_s * e01 + a_p * e11, t0, t1, c0, c1, half_split, inverse_w)
+                                                     : active_terms(e00, e01, t0, t1, c0, c1, half_split, inverse_w);
+                const ActiveTerms second = AnalyzerIn ? ActiveTerms{} : active_terms(e10, e11, t0, t1, c0, c1, half_split, inverse_w);
+                mean[i] = first.mean + second.mean;
+                modulation[i] = first.modulation + second.modulation;
+                sine_modulation[i] = first.sine_modulation + second.sine_modulation;
+                phase[i] = 2.0 * w;
+            }
             if constexpr (Output == KernelOutput::fields) {
                 field_s0[i] = e00 * t0;
                 field_s1[i] = e01 * t1;
@@ -477,7 +489,7 @@ void KernelScratch::resize(std::size_t padded_samples) {
     }
     for (auto& side : psi) for (auto& sheet : side) for (auto& component : sheet) component.resize(padded_samples);
     for (auto& side : sheet_failed) for (auto& sheet : side) sheet.resize(padded_samples);
-    for (auto* set : {&previous_xi_x, &previous_xi_y, &transmission, &mean, &modulation, &phase_difference, &coupling_product}) {
+    for (auto* set : {&previous_xi_x, &previous_xi_y, &transmission, &mean, &modulation, &sine_modulation, &phase_difference, &coupling_product}) {
         for (auto& side : *set) side.resize(padded_samples);
     }
     for (auto* set : {&mode_field, &coupled_field}) {
@@ -500,9 +512,8 @@ namespace {
 /// The transmission from the modes in `scratch`, and each sample's failure flag; whether any failed.
 bool transmit_and_flag(const SampleCrystal& crystal, const PolarizerPair& polars, KernelScratch& scratch, KernelOutput output) {
     if (crystal.gyrotropic && output == KernelOutput::terms) {
-        throw std::logic_error("conoscope kernel: interference terms are defined without optical activity only");
-    }
-    if (crystal.gyrotropic && output == KernelOutput::fields) {
+        transmission_of_both_sides<KernelOutput::terms, false, true>(crystal, polars, scratch);
+    } else if (crystal.gyrotropic && output == KernelOutput::fields) {
         transmission_of_both_sides<KernelOutput::fields, false, true>(crystal, polars, scratch);
     } else if (output == KernelOutput::terms) {
         transmission_of_both_sides<KernelOutput::terms, false>(crystal, polars, scratch);

@@ -77,8 +77,10 @@ struct KernelScratch {
     // Flags are 8-byte integers: a narrower type would make the vectoriser process 64 samples at a time.
     std::array<std::array<std::vector<std::int64_t>, 2>, 2> sheet_failed;
     std::array<std::vector<double>, 2> transmission;
-    // KernelOutput::terms: transmission = mean + modulation·cos(k₀d(q_fast − q_slow)) (microscope/interference.hpp).
-    std::array<std::vector<double>, 2> mean, modulation;
+    // KernelOutput::terms: transmission = mean + modulation·cos(k₀d(q_fast − q_slow)) (microscope/interference.hpp);
+    // for an optically active crystal + sine_modulation·sin(2k₀Wd), with 2W in phase_difference (interference.hpp,
+    // active_terms).
+    std::array<std::vector<double>, 2> mean, modulation, sine_modulation;
     // KernelOutput::fields: the field each mode leaves the slab with, before its phase, and the phase
     // difference δ = k₀d(q_fast − q_slow). mode_field[side]: s component of the fast and slow mode, then
     // p component of the fast and slow mode (rows s, p of ŝ, ρ̂; real in a lossless crystal). Unlike ψ
@@ -100,7 +102,8 @@ void set_sample_directions(KernelScratch& scratch, std::size_t first, std::size_
 /// What run_kernel leaves in the scratch besides the transmission.
 enum class KernelOutput {
     transmission,  // only the transmission
-    terms,         // also scratch.mean and scratch.modulation (no plate, no optical activity)
+    terms,         // also scratch.mean and scratch.modulation (no plate), and with optical activity
+                   // scratch.sine_modulation and 2W in scratch.phase_difference
     fields,        // also scratch.mode_field and scratch.phase_difference, and with optical activity
                    // scratch.coupled_field and scratch.coupling_product (no plate)
 };

@@ -20,6 +20,23 @@ struct PairTerms {
 };
 inline PairTerms pair_terms(double c0, double c1) { return {c0 * c0 + c1 * c1, 2.0 * c0 * c1}; }
 
+/// An optically active crystal's terms (conoscope.hpp, InterferenceTerms) for one analyzed component: the analyzer
+/// reads u₀ = U₀·t₀ of the fast and u₁ = U₁·t₁ of the slow mode's entrance amplitude t, the modes are coupled by
+/// (c₀, c₁) (optics/slab.hpp) and split by Δ = (q_fast − q_slow)/2, W = √(Δ² + c₀c₁). Across the slab
+/// exp(i·k₀d·Q) (slab_propagation) makes the amplitude cos(k₀Wd)·A + sin(k₀Wd)·(B + iC) with A = U₀t₀ + U₁t₁,
+/// B = (U₁c₁t₀ − U₀c₀t₁)/W and C = Δ(U₀t₀ − U₁t₁)/W, whose square is the mean (A² + B² + C²)/2, the modulation
+/// (A² − B² − C²)/2 of cos 2k₀Wd and AB of sin 2k₀Wd. `inverse_w` is 1/W (0 where W = 0: no coupling, no splitting).
+struct ActiveTerms {
+    double mean = 0.0, modulation = 0.0, sine_modulation = 0.0;
+};
+inline ActiveTerms active_terms(double analyzer_fast, double analyzer_slow, double t0, double t1, double c0, double c1, double half_split,
+                                double inverse_w) {
+    const double a = analyzer_fast * t0 + analyzer_slow * t1;
+    const double b = (analyzer_slow * c1 * t0 - analyzer_fast * c0 * t1) * inverse_w;
+    const double c = half_split * (analyzer_fast * t0 - analyzer_slow * t1) * inverse_w;
+    return {0.5 * (a * a + b * b + c * c), 0.5 * (a * a - b * b - c * c), a * b};
+}
+
 /// |bᵀ(E₀e^{iφ₀} + E₁e^{iφ₁})|² for real mode fields Eₘ = (uₘ, vₘ) and a complex analyzer b = b_re + i·b_im
 /// (after a plate), both in one orthonormal basis (u, v): with αₘ = b_re·Eₘ, βₘ = b_im·Eₘ and δ = φ₀ − φ₁
 /// it is Σₘ(αₘ² + βₘ²) + 2(α₀α₁ + β₀β₁)cos δ + 2(α₀β₁ − β₀α₁)sin δ: |Σₘ (αₘ + iβₘ)e^{iφₘ}|² written out

@@ -1,6 +1,7 @@
 // The conoscope with optical activity: quartz's centre between crossed polars, the sense of rotation, a thin
 // section's figure (unchanged by activity beyond 1e-3), a zero gyration (today's figure to 1e-12), and the
-// vectorised kernel against the reference path for random active crystals, with and without a plate.
+// vectorised kernel against the reference path for random active crystals, with and without a plate. The
+// interference terms of an active crystal are tested in test_conoscope_terms.cpp.
 #include "conoscope_evaluator.hpp"
 #include "conoscope_fixtures.hpp"
 
@@ -170,12 +171,6 @@ TEST(ConoscopeActivity, TheKernelMatchesTheReferencePathForRandomActiveCrystals)
     EXPECT_LT(worst_spectral, 1e-12);
     EXPECT_LT(worst_batch, 1e-12);
     std::printf("active kernel vs reference: white %.2e, monochromatic batches %.2e\n", worst_spectral, worst_batch);
-}
-
-TEST(ConoscopeActivity, InterferenceTermsRefuseAnActiveCrystal) {
-    // mean + modulation·cos(phase·d) is not the thickness dependence of an active crystal.
-    const ConoscopeSettings settings = basal_quartz(Handedness::right);
-    EXPECT_THROW({ const ConoscopeTerms terms(settings, testing::indices_of(quartz())); }, InputError);
 }
 
 }  // namespace

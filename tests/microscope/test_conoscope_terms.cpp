@@ -1,9 +1,11 @@
 // The thickness-independent interference terms that fitting uses must reproduce the figure's transmission
-// at every thickness: T(d) = mean + modulation·cos(phase_per_um·d) against conoscope_point_transmission,
+// at every thickness: T(d) = mean + modulation·cos(phase_per_um·d) (+ sine_modulation·sin(phase_per_um·d) for an
+// optically active crystal) against conoscope_point_transmission,
 // which evaluates each thickness on its own (vectorised kernel, reference path where it flags samples).
 #include "conoscope_fixtures.hpp"
 
 #include "petroscope/core/error.hpp"
+#include "petroscope/microscope/polarizing_microscope.hpp"
 #include "petroscope/spectral/wavelength_grid.hpp"
 
 #include <gtest/gtest.h>
@@ -16,6 +18,7 @@ struct TermsCase {
     Cut cut;
     double tilt_deg;
     bool analyzer_in;
+    bool optically_active = false;  // with the mineral's gyration: the sine term of InterferenceTerms
 };
 
 class ConoscopeTermsTest : public ::testing::TestWithParam<TermsCase> {};
@@ -29,6 +32,7 @@ TEST_P(ConoscopeTermsTest, ReproduceTransmissionAtEveryThickness) {
     settings.analyzer_in = c.analyzer_in;
     settings.polarizer_deg = 10.0;
     settings.analyzer_deg = 100.0;
+    if (c.optically_active) settings.gyration = mineral_gyration(mineral, Handedness::left);
     const PrincipalIndexFunction indices = testing::indices_of(mineral);
     // A row of neighbouring directions (warm starts) plus the axis and points near the edge of the field.
     std::vector<Eigen::Vector2d> xis;
@@ -55,6 +59,8 @@ TEST_P(ConoscopeTermsTest, ReproduceTransmissionAtEveryThickness) {
 INSTANTIATE_TEST_SUITE_P(Minerals, ConoscopeTermsTest,
                          ::testing::Values(TermsCase{"calcite", Cut::optic_axis, 0.0, true}, TermsCase{"calcite", Cut::optic_axis, 25.0, false},
                                            TermsCase{"quartz", Cut::optic_axis, 10.0, true},
+                                           TermsCase{"quartz", Cut::optic_axis, 10.0, true, true},
+                                           TermsCase{"quartz", Cut::optic_axis, 0.0, false, true},
                                            TermsCase{"muscovite", Cut::acute_bisectrix, 0.0, true},
                                            TermsCase{"forsterite", Cut::acute_bisectrix, 15.0, false}));
 

@@ -4,6 +4,7 @@
 #include "petroscope/api/light.hpp"
 #include "petroscope/fit/conoscope_fit.hpp"
 #include "petroscope/minerals/mineral.hpp"
+#include "petroscope/optics/gyration.hpp"
 #include "petroscope/optics/orientation.hpp"
 
 #include <optional>
@@ -18,6 +19,7 @@ struct ConoscopePhotoSetup {
     double polarizer_deg = 0.0;
     double analyzer_deg = 90.0;
     double surround_n = 1.54;  // index on both faces of the slab
+    Handedness handedness = Handedness::right;  // of an optically active mineral (quartz)
 };
 
 /// The model of photos of `mineral` (which must outlive it); its orientation is the cut tilted and turned

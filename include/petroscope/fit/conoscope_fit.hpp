@@ -57,9 +57,6 @@ struct ConoscopePhotoModel {
     /// Linear sRGB per unit transmission at each wavelength of settings (white light: the colour
     /// integrator's weights through the display conversion; monochromatic light: (1, 1, 1)).
     std::vector<Eigen::Vector3d> rgb_per_transmission;
-    /// The crystal is optically active, which the fit's model leaves out (its thickness dependence,
-    /// microscope/conoscope.hpp's InterferenceTerms, is that of an inactive crystal): the result warns.
-    bool leaves_out_optical_activity = false;
 };
 
 /// Starting values for a photo of this size: centre of the image, field radius half the shorter side,

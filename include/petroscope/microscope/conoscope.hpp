@@ -75,14 +75,21 @@ std::vector<double> conoscope_point_transmission(const ConoscopeSettings& settin
                                                  const Eigen::Vector2d& xi);
 
 /// How one image point's transmission at one wavelength depends on the slab thickness d (single pass,
-/// no plate): mean + modulation·cos(phase_per_um·d), the interference of the two modes
-/// (phase_per_um = k₀(q_fast − q_slow) in rad/µm). Fitting a thickness needs these only once.
+/// no plate): mean + modulation·cos(phase_per_um·d) + sine_modulation·sin(phase_per_um·d), the interference of
+/// the two modes. Inactive crystal: phase_per_um = k₀(q_fast − q_slow) in rad/µm and no sine term. Optically
+/// active crystal: the modes' coupling across the slab (optics/slab.hpp, slab_propagation) makes each analyzed
+/// amplitude cos(Wd)·A + sin(Wd)·(B + iC) with W = k₀√(((q_fast − q_slow)/2)² + c₀c₁), so phase_per_um = 2W and
+/// the transmission (A² + B² + C²)/2 + ((A² − B² − C²)/2)·cos 2Wd + AB·sin 2Wd, summed over the analyzed
+/// components. Fitting a thickness needs these only once.
 struct InterferenceTerms {
     double mean = 0.0;
     double modulation = 0.0;
     double phase_per_um = 0.0;
+    double sine_modulation = 0.0;
 
-    double transmission(double thickness_um) const { return mean + modulation * std::cos(phase_per_um * thickness_um); }
+    double transmission(double thickness_um) const {
+        return mean + modulation * std::cos(phase_per_um * thickness_um) + sine_modulation * std::sin(phase_per_um * thickness_um);
+    }
 };
 
 namespace detail {
@@ -90,8 +97,7 @@ class ConoscopeEvaluator;
 }
 
 /// The terms of many image points at every wavelength of a figure's settings (settings.thickness_um is
-/// not used; a plate, a mounting or optical activity is refused with InputError: the thickness dependence of
-/// an active crystal is not of this form).
+/// not used; a plate or a mounting is refused with InputError).
 class ConoscopeTerms {
 public:
     ConoscopeTerms(const ConoscopeSettings& settings, const PrincipalIndexFunction& principal_n);
