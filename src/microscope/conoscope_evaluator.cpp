@@ -6,6 +6,7 @@
 
 #include "petroscope/core/angles.hpp"
 #include "petroscope/core/text.hpp"
+#include "petroscope/optics/gyration.hpp"
 #include "petroscope/optics/orientation.hpp"
 
 #include <cmath>
@@ -42,8 +43,7 @@ std::vector<Eigen::Matrix3d> gyration_for(const ConoscopeSettings& settings, con
     for (const double wavelength_nm : wavelengths) {
         const Eigen::Matrix3d g = settings.gyration(wavelength_nm);
         if (!g.allFinite()) throw InputError("the crystal's gyration tensor is not finite at " + format_number(wavelength_nm) + " nm");
-        const Eigen::Matrix3d lab = axes * g * axes.transpose();
-        tensors.push_back(0.5 * (lab + lab.transpose()));
+        tensors.push_back(turned_gyration(g, axes));
     }
     return tensors;
 }

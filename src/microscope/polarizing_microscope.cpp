@@ -23,8 +23,7 @@ Eigen::Matrix2d sp_to_lab(const TangentialWavevector& direction) {
 
 Eigen::Matrix3d DispersiveMedium::chirality(double wavelength_nm) const {
     if (!gyration) return Eigen::Matrix3d::Zero();
-    const Eigen::Matrix3d lab = axes * gyration(wavelength_nm) * axes.transpose();
-    return chirality_tensor(0.5 * (lab + lab.transpose()));
+    return chirality_tensor(turned_gyration(gyration(wavelength_nm), axes));
 }
 
 GyrationFunction mineral_gyration(const Mineral& mineral, Handedness handedness) {

@@ -20,8 +20,12 @@ Eigen::Matrix3d gyration_tensor(const Eigen::Vector3d& rotatory_power_rad_per_um
     // gᵢᵢ = λρᵢ/π (gyration.hpp); the enantiomorph is the mirror image, g → −g (a pseudo-tensor).
     const double sign = handedness == Handedness::right ? 1.0 : -1.0;
     const Eigen::Vector3d principal = sign * wavelength_nm * 1e-3 / std::numbers::pi * rotatory_power_rad_per_um;
-    const Eigen::Matrix3d g = axes * principal.asDiagonal() * axes.transpose();
-    return 0.5 * (g + g.transpose());  // symmetric to the last bit
+    return turned_gyration(principal.asDiagonal(), axes);
+}
+
+Eigen::Matrix3d turned_gyration(const Eigen::Matrix3d& gyration, const Eigen::Matrix3d& axes) {
+    const Eigen::Matrix3d lab = axes * gyration * axes.transpose();
+    return 0.5 * (lab + lab.transpose());
 }
 
 Eigen::Matrix3d chirality_tensor(const Eigen::Matrix3d& gyration) {

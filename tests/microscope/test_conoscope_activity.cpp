@@ -4,6 +4,7 @@
 // interference terms of an active crystal are tested in test_conoscope_terms.cpp.
 #include "conoscope_evaluator.hpp"
 #include "conoscope_fixtures.hpp"
+#include "kernel_against_reference.hpp"
 
 #include "petroscope/microscope/polarizing_microscope.hpp"
 #include "petroscope/core/error.hpp"
@@ -133,40 +134,12 @@ TEST(ConoscopeActivity, TheKernelMatchesTheReferencePathForRandomActiveCrystals)
         for (int i = 0; i < 3; ++i) {
             for (int j = i; j < 3; ++j) g(i, j) = g(j, i) = std::pow(10.0, -3.5 + unit(rng)) * symmetric(rng);
         }
-        ConoscopeSettings settings;
-        settings.numerical_aperture = 0.95;
-        settings.thickness_um = std::pow(10.0, 0.5 * unit(rng) + 1.0);  // 10 … 32 µm: phases where rounding stays below 1e-13
-        settings.polarizer_deg = 360.0 * unit(rng);
-        settings.analyzer_deg = settings.polarizer_deg + 90.0 + 20.0 * (unit(rng) - 0.5);
-        settings.analyzer_in = crystal_case % 4 != 0;
-        settings.crystal_axes = indicatrix.axes;
+        ConoscopeSettings settings = testing::random_thin_slab(indicatrix.axes, crystal_case, rng);
         if (crystal_case % 3 == 0) settings.plate = make_accessory_plate(PlateKind::gypsum, gypsum, 180.0 * unit(rng));
         settings.gyration = [g](double) { return g; };
-        settings.wavelengths_nm = {400.0, 480.0, 550.0, 650.0, 750.0};
-        const PrincipalIndexFunction indices = [&](double nm) {
-            return Eigen::Vector3d((indicatrix.principal_n.array() + 0.004 * (550.0 * 550.0 / (nm * nm) - 1.0)).matrix());
-        };
-        const detail::ConoscopeEvaluator spectral(settings, indices);
-        detail::SpectralScratch scratch;
-        std::vector<double> plus(5), minus(5);
-        std::vector<Eigen::Vector2d> xis;
-        for (int direction = 0; direction < 30; ++direction) {
-            const Eigen::Vector2d xi = 0.95 * std::sqrt(unit(rng)) * Eigen::Vector2d(std::cos(2.0 * std::numbers::pi * unit(rng)), std::sin(2.0 * std::numbers::pi * unit(rng)));
-            xis.push_back(xi);
-            spectral.spectral_pair(xi, scratch, false, plus.data(), minus.data());
-            for (std::size_t w = 0; w < 5; ++w) {
-                const std::array<double, 2> reference = spectral.reference_pair(w, xi);
-                worst_spectral = std::max({worst_spectral, std::abs(plus[w] - reference[0]), std::abs(minus[w] - reference[1])});
-            }
-        }
-        settings.wavelengths_nm = {589.3};
-        const detail::ConoscopeEvaluator monochromatic(settings, indices);
-        std::vector<double> batch_plus(xis.size()), batch_minus(xis.size());
-        monochromatic.monochromatic_pairs(xis, scratch.every_wavelength, batch_plus.data(), batch_minus.data());
-        for (std::size_t k = 0; k < xis.size(); ++k) {
-            const std::array<double, 2> reference = monochromatic.reference_pair(0, xis[k]);
-            worst_batch = std::max({worst_batch, std::abs(batch_plus[k] - reference[0]), std::abs(batch_minus[k] - reference[1])});
-        }
+        const testing::KernelDifferences difference = testing::kernel_against_reference(settings, indicatrix.principal_n, rng);
+        worst_spectral = std::max(worst_spectral, difference.white);
+        worst_batch = std::max(worst_batch, difference.batch);
     }
     EXPECT_LT(worst_spectral, 1e-12);
     EXPECT_LT(worst_batch, 1e-12);

@@ -4,6 +4,7 @@
 // an accessory plate after the crystal (the complex effective analyzer of conoscope_kernel.hpp).
 #include "conoscope_evaluator.hpp"
 #include "conoscope_fixtures.hpp"
+#include "kernel_against_reference.hpp"
 
 #include "support/random_crystals.hpp"
 
@@ -13,18 +14,6 @@
 
 namespace petroscope {
 namespace {
-
-// The largest difference between a monochromatic batch of directions through the kernel and the reference path.
-double batch_difference(const detail::ConoscopeEvaluator& evaluator, const std::vector<Eigen::Vector2d>& xis, detail::KernelScratch& scratch) {
-    std::vector<double> plus(xis.size()), minus(xis.size());
-    evaluator.monochromatic_pairs(xis, scratch, plus.data(), minus.data());
-    double worst = 0.0;
-    for (std::size_t k = 0; k < xis.size(); ++k) {
-        const std::array<double, 2> reference = evaluator.reference_pair(0, xis[k]);
-        worst = std::max({worst, std::abs(plus[k] - reference[0]), std::abs(minus[k] - reference[1])});
-    }
-    return worst;
-}
 
 TEST(ConoscopeKernel, MatchesTheReferencePathEverywhere) {
     std::mt19937_64 rng(2026);
@@ -124,7 +113,7 @@ TEST(ConoscopeKernel, WarmStartsAlongARowAndMonochromaticBatchesMatchTheReferenc
         for (int k = 0; k < 100; ++k) {
             xis.push_back(0.95 * std::sqrt(unit(rng)) * Eigen::Vector2d(std::cos(2 * M_PI * unit(rng)), std::sin(2 * M_PI * unit(rng))));
         }
-        worst_batch = std::max(worst_batch, batch_difference(monochromatic, xis, scratch.every_wavelength));
+        worst_batch = std::max(worst_batch, testing::batch_difference(monochromatic, xis, scratch.every_wavelength));
     }
     // 30 µm: k₀d ≤ 4.5e2, so the phase rounding is below 1e-12.
     EXPECT_LT(worst_row, 1e-12);
@@ -141,34 +130,11 @@ TEST(ConoscopeKernel, WithAPlateMatchesTheReferencePath) {
     for (int crystal_case = 0; crystal_case < 60; ++crystal_case) {
         const Indicatrix indicatrix = crystal_case % 3 == 0 ? testing::random_uniaxial(rng) : testing::random_biaxial(rng);
         const auto& [kind, plate_mineral] = plates[static_cast<std::size_t>(crystal_case) % plates.size()];
-        ConoscopeSettings settings;
-        settings.numerical_aperture = 0.95;
-        settings.thickness_um = std::pow(10.0, 0.5 * unit(rng) + 1.0);  // 10 … 32 µm: phases where rounding stays below 1e-13
-        settings.polarizer_deg = 360.0 * unit(rng);
-        settings.analyzer_deg = settings.polarizer_deg + 90.0 + 20.0 * (unit(rng) - 0.5);
-        settings.analyzer_in = crystal_case % 4 != 0;
-        settings.crystal_axes = indicatrix.axes;
+        ConoscopeSettings settings = testing::random_thin_slab(indicatrix.axes, crystal_case, rng);
         settings.plate = make_accessory_plate(kind, minerals.find(plate_mineral), 180.0 * unit(rng), unit(rng));
-        settings.wavelengths_nm = {400.0, 480.0, 550.0, 650.0, 750.0};
-        const PrincipalIndexFunction indices = [&](double nm) {
-            return Eigen::Vector3d((indicatrix.principal_n.array() + 0.004 * (550.0 * 550.0 / (nm * nm) - 1.0)).matrix());
-        };
-        const detail::ConoscopeEvaluator spectral(settings, indices);
-        detail::SpectralScratch scratch;
-        std::vector<double> plus(5), minus(5);
-        std::vector<Eigen::Vector2d> xis;
-        for (int direction = 0; direction < 30; ++direction) {
-            const Eigen::Vector2d xi = 0.95 * std::sqrt(unit(rng)) * Eigen::Vector2d(std::cos(2 * M_PI * unit(rng)), std::sin(2 * M_PI * unit(rng)));
-            xis.push_back(xi);
-            spectral.spectral_pair(xi, scratch, false, plus.data(), minus.data());
-            for (std::size_t w = 0; w < 5; ++w) {
-                const std::array<double, 2> reference = spectral.reference_pair(w, xi);
-                worst_spectral = std::max({worst_spectral, std::abs(plus[w] - reference[0]), std::abs(minus[w] - reference[1])});
-            }
-        }
-        settings.wavelengths_nm = {589.3};
-        const detail::ConoscopeEvaluator monochromatic(settings, indices);
-        worst_batch = std::max(worst_batch, batch_difference(monochromatic, xis, scratch.every_wavelength));
+        const testing::KernelDifferences difference = testing::kernel_against_reference(settings, indicatrix.principal_n, rng);
+        worst_spectral = std::max(worst_spectral, difference.white);
+        worst_batch = std::max(worst_batch, difference.batch);
     }
     EXPECT_LT(worst_spectral, 1e-12);
     EXPECT_LT(worst_batch, 1e-12);

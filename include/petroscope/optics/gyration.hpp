@@ -25,6 +25,10 @@ Handedness parse_handedness(std::string_view text);
 Eigen::Matrix3d gyration_tensor(const Eigen::Vector3d& rotatory_power_rad_per_um, const Eigen::Matrix3d& axes,
                                 double wavelength_nm, Handedness handedness);
 
+/// A gyration tensor given in the frame whose axes are the columns of `axes` (lab frame), seen in the lab:
+/// A·g·Aᵀ, made symmetric to the last bit.
+Eigen::Matrix3d turned_gyration(const Eigen::Matrix3d& gyration, const Eigen::Matrix3d& axes);
+
 /// The chirality tensor κ of the equivalent bianisotropic relations D = ε_b E + iκH, B = H − iκE
 /// (Berreman, JOSA 62, 502 (1972), his optically active media): κ = (tr g/2)·I − g, and ε_b = ε + κ², give
 /// exactly Landau's plane-wave equation N × (N × E) + εE + i(g·N) × E = 0, by the identity
