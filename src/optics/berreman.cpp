@@ -11,6 +11,7 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -230,45 +231,67 @@ Spectrum isotropic_spectrum(const Medium& medium, bool inside_stack) {
     return spectrum;
 }
 
-// Orthonormal basis of the null space of `m` known to have rank 2: its two right singular vectors of least
-// singular value.
-Matrix42cd null_space_2(const Eigen::Matrix4cd& m) {
-    const Eigen::JacobiSVD<Eigen::Matrix4cd> svd(m, Eigen::ComputeFullV);
-    return svd.matrixV().rightCols<2>();
-}
+// The complex Schur form Δ = U T Uᴴ (T upper triangular, U unitary) with its eigenvalues reordered: swapping
+// the adjacent diagonal entries k and k + 1 takes one plane rotation G whose first column is the 2×2 block's
+// eigenvector of T(k+1, k+1), x ∝ (T(k, k+1), T(k+1, k+1) − T(k, k)); then T ← Gᴴ T G, U ← U G
+// (Golub & Van Loan, Matrix Computations, 4th ed., §7.6.2). The leading m columns of U then span the
+// invariant subspace of the leading m eigenvalues, orthonormal, with Uᴴ Δ U restricted to it the leading block of T.
+struct OrderedSchur {
+    Eigen::Matrix4cd t, u;
+    std::array<int, 4> label{0, 1, 2, 3};  // which eigenvalue of the first decomposition sits at each position
 
-// Anisotropic medium: the eigenvalues of Δ (Schur decomposition), each classified forward or backward with
-// its own eigenvector (flux sign) or the sign of Im q; then the forward subspace as the null space of
-// (Δ − q_f1)(Δ − q_f2) — the generalised eigenspace of the pair, by Cayley–Hamilton the range of
-// (Δ − q_b1)(Δ − q_b2) — and the backward one likewise.
-// This subspace is well conditioned even when the two forward waves are degenerate (optic axis) where the
-// individual eigenvectors are not; it fails only where a forward and a backward wave meet (q → 0 at grazing
-// incidence, an exceptional point of Δ).
+    void swap_adjacent(int k) {
+        Eigen::Vector2cd x(t(k, k + 1), t(k + 1, k + 1) - t(k, k));
+        const double length = x.norm();
+        if (length > 0.0) {  // else the block is diagonal with equal entries: swapping changes nothing
+            x /= length;
+            Eigen::Matrix2cd g;
+            g << x[0], -std::conj(x[1]), x[1], std::conj(x[0]);
+            t.middleCols<2>(k) = t.middleCols<2>(k) * g;
+            t.middleRows<2>(k) = g.adjoint() * t.middleRows<2>(k);
+            u.middleCols<2>(k) = u.middleCols<2>(k) * g;
+            t(k + 1, k) = 0.0;
+        }
+        std::swap(label[k], label[k + 1]);
+    }
+
+    // Moves eigenvalue `which` (a label) to position `target`, from below it.
+    void bring_to(int which, int target) {
+        const int position = static_cast<int>(std::find(label.begin(), label.end(), which) - label.begin());
+        for (int k = position - 1; k >= target; --k) swap_adjacent(k);
+    }
+};
+
+// Anisotropic medium: the eigenvalues of Δ (complex Schur form), each classified forward or backward by the
+// sign of Im q or, when q is real, by the flux of its eigenvector (the first Schur vector once it leads);
+// then the forward pair's invariant subspace as the leading Schur vectors once both lead, and the backward
+// pair's likewise. The subspace stays well conditioned when the two forward waves are degenerate (optic
+// axis), where the individual eigenvectors are not; it fails only where a forward and a backward wave meet
+// (q → 0 at grazing incidence, an exceptional point of Δ).
 Spectrum anisotropic_spectrum(const Medium& medium) {
     const Eigen::Matrix4cd delta = medium.chiral ? chiral_delta_matrix(medium) : delta_matrix(medium.epsilon, medium.xi);
-    const Eigen::ComplexEigenSolver<Eigen::Matrix4cd> solver(delta, false);
-    std::array<Complex, 4> q;
+    const Eigen::ComplexSchur<Eigen::Matrix4cd> schur(delta);
+    const OrderedSchur decomposition{schur.matrixT(), schur.matrixU()};
     std::array<double, 4> forwardness;  // > 0 forward: Im q when the amplitude varies, else the flux
     for (int i = 0; i < 4; ++i) {
-        q[i] = solver.eigenvalues()[i];
+        Complex q = decomposition.t(i, i);
         // A Hermitian ε gives real q or complex-conjugate pairs (Δ is then J-self-adjoint): snap rounding noise.
-        if (medium.lossless && !amplitude_varies(q[i])) q[i] = q[i].real();
-        if (amplitude_varies(q[i])) {
-            forwardness[i] = q[i].imag();
+        if (medium.lossless && !amplitude_varies(q)) q = q.real();
+        if (amplitude_varies(q)) {
+            forwardness[i] = q.imag();
         } else {
-            const Eigen::JacobiSVD<Eigen::Matrix4cd> svd(delta - q[i] * Eigen::Matrix4cd::Identity(),
-                                                         Eigen::ComputeFullV);
-            forwardness[i] = flux_of(svd.matrixV().col(3));
+            OrderedSchur leading = decomposition;
+            leading.bring_to(i, 0);
+            forwardness[i] = flux_of(leading.u.col(0));
         }
     }
     std::array<int, 4> order{0, 1, 2, 3};
     std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return forwardness[a] > forwardness[b]; });
-    const Eigen::Matrix4cd identity = Eigen::Matrix4cd::Identity();
     const auto subspace = [&](int first, int second) {
-        WavePair pair;
-        pair.basis = null_space_2((delta - q[first] * identity) * (delta - q[second] * identity));
-        pair.generator = pair.basis.adjoint() * delta * pair.basis;
-        return pair;
+        OrderedSchur leading = decomposition;
+        leading.bring_to(first, 0);
+        leading.bring_to(second, 1);
+        return WavePair{leading.u.leftCols<2>(), leading.t.topLeftCorner<2, 2>()};
     };
     return Spectrum{subspace(order[0], order[1]), subspace(order[2], order[3])};
 }
