@@ -9,6 +9,7 @@
 
 #include <map>
 #include <memory>
+#include <string>
 
 namespace petroscope::cli {
 namespace {
@@ -52,7 +53,9 @@ nlohmann::json section_summary(const ThinSection& section) {
 }
 
 PreparedFrame OrthoscopeOptions::prepare(FrameContext& context) const {
-    if (plain_.condenser_rings < 0 || plain_.condenser_rings > 64) throw InputError("--condenser-rings must be 0 (automatic) to 64");
+    if (plain_.condenser_rings < 0 || plain_.condenser_rings > kMaxCondenserRings) {
+        throw InputError("--condenser-rings must be 0 (automatic) to " + std::to_string(kMaxCondenserRings));
+    }
     OrthoscopeRequest request = plain_;
     request.analyzer_in = !ppl_;
     request.plate = plate_request(plate_);
@@ -75,8 +78,8 @@ PreparedFrame OrthoscopeOptions::prepare(FrameContext& context) const {
         {"analyzer_deg", ppl_ ? nlohmann::json(nullptr) : nlohmann::json(microscope.polars.analyzer_deg)},
         {"plate", plate_json(microscope.plate)},
         {"condenser_na", microscope.condenser_na},
-        {"condenser_directions", condenser_samples(microscope.condenser_na, microscope.condenser_rings > 0 ? microscope.condenser_rings
-                                                                                                         : default_condenser_rings(microscope.condenser_na)).size()},
+        {"condenser_rings", microscope.condenser_rings},
+        {"condenser_directions", condenser_samples(microscope.condenser_na, microscope.condenser_rings).size()},
         {"mounting", mounting_json(plan->settings.mounting)},
         {"model", microscope.exact ? "exact coherent 4x4 transfer matrix (Berreman) per element: section, plate"
                                    : "single-pass Jones from the exact eigenmodes of every layer, Fresnel at every interface, no multiple reflections"},
@@ -104,7 +107,7 @@ void OrthoscopeOptions::add_options(CLI::App* command) {
     command->add_option("--stage-deg", plain_.stage_deg, "Stage rotation (counter-clockwise seen from the observer)")->capture_default_str();
     add_plate_options(command, plate_);
     command->add_option("--condenser-na", plain_.condenser_na, "Condenser cone (Koehler), 0 = parallel light")->capture_default_str();
-    command->add_option("--condenser-rings", plain_.condenser_rings, "Rings of directions sampling the cone (0: automatic, NA/0.05)")->capture_default_str();
+    command->add_option("--condenser-rings", plain_.condenser_rings, "Rings of the cone's cubature, 4*rings+2 directions each plus the axis (0: automatic, from the thickest and most birefringent grain)")->capture_default_str();
     command->add_option("--thickness", thickness_, "Override the section's thickness with a uniform one: 30um, …")->type_name(length_type);
     command->add_flag("--exact", plain_.exact, "Coherent 4x4 transfer matrix (every multiple reflection) instead of single-pass Jones");
     add_light_options(command, light_);

@@ -5,12 +5,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace petroscope {
 
 OrthoscopePlan plan_orthoscope(OrthoscopeRequest request, const MineralCatalog& catalog) {
     request.light.validate();
-    if (request.condenser_rings < 0 || request.condenser_rings > 64) throw InputError("condenser rings must be 0 (automatic) to 64");
+    if (request.condenser_rings < 0 || request.condenser_rings > kMaxCondenserRings) {
+        throw InputError("condenser rings must be 0 (automatic) to " + std::to_string(kMaxCondenserRings));
+    }
     OrthoscopePlan plan;
     MicroscopeSettings& microscope = plan.settings.microscope;
     microscope.stage_deg = request.stage_deg;
@@ -29,6 +32,7 @@ OrthoscopePlan plan_orthoscope(OrthoscopeRequest request, const MineralCatalog& 
         plan.section.thickness_um = *request.thickness_um;
     }
     plan.section.validate();
+    microscope.condenser_rings = section_condenser_rings(plan.section, catalog, microscope);
     plan.catalog = &catalog;
     plan.light = request.light;
     std::vector<std::string> warned;

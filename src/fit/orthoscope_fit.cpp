@@ -41,6 +41,10 @@ public:
             auto settings = std::make_unique<MicroscopeSettings>(options.microscope);
             settings->stage_deg = photo.stage_deg;
             settings->plate = photo.plate;
+            if (settings->condenser_rings == 0) {  // automatic: enough for the thickest grain searched
+                const double spread = condenser_phase_spread_rad(*settings, DispersiveMedium::of(mineral), options.thickness_max_um);
+                settings->condenser_rings = condenser_rings_for(settings->condenser_na, spread);
+            }
             optics_.push_back(std::make_unique<MicroscopeOptics>(*settings, options.mounting));
             settings_.push_back(std::move(settings));
         }

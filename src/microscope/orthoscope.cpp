@@ -70,6 +70,27 @@ double largest_birefringence(const DispersiveMedium& medium, double wavelength_n
 
 }  // namespace
 
+int section_condenser_rings(const ThinSection& section, const MineralCatalog& catalog, const MicroscopeSettings& microscope) {
+    if (microscope.condenser_rings > 0 || microscope.condenser_na == 0.0) return microscope.condenser_rings;
+    std::vector<double> thickest(section.grains.size(), 0.0);
+    if (section.thickness_kind == ThicknessKind::uniform) {
+        for (std::size_t g = 0; g < section.grains.size(); ++g) thickest[g] = section.grains[g].thickness_um.value_or(section.thickness_um);
+    } else {
+        for (int y = 0; y < section.height_px; ++y) {
+            for (int x = 0; x < section.width_px; ++x) {
+                const int g = section.grain_index_of_label[section.labels[static_cast<std::size_t>(y) * section.width_px + x]];
+                thickest[g] = std::max(thickest[g], section.thickness_at(x, y, section.grains[g]));
+            }
+        }
+    }
+    double spread = 0.0;
+    for (std::size_t g = 0; g < section.grains.size(); ++g) {
+        const DispersiveMedium medium = DispersiveMedium::of(catalog.find(section.grains[g].mineral));
+        spread = std::max(spread, condenser_phase_spread_rad(microscope, medium, thickest[g]));
+    }
+    return condenser_rings_for(microscope.condenser_na, spread);
+}
+
 void OrthoscopeSettings::validate() const {
     const MicroscopeSettings& m = microscope;
     for (const double angle : {m.polars.polarizer_deg, m.polars.analyzer_deg, m.stage_deg}) {
@@ -123,7 +144,9 @@ Image render_orthoscope(const ThinSection& section, const MineralCatalog& catalo
     media.push_back(settings.mounting.cement);
 
     const double middle_wavelength_nm = wavelengths[wavelengths.size() / 2];
-    const MicroscopeOptics optics(settings.microscope, settings.mounting);
+    MicroscopeSettings microscope = settings.microscope;
+    microscope.condenser_rings = section_condenser_rings(section, catalog, microscope);
+    const MicroscopeOptics optics(microscope, settings.mounting);
     std::vector<GrainTable> tables(grain_count);
     ProgressRelay relay(progress);
     std::atomic<int> grains_done{0};
@@ -139,17 +162,15 @@ Image render_orthoscope(const ThinSection& section, const MineralCatalog& catalo
             table.step_um = span / (table.entries - 1);
         }
         const GrainResponse response(optics, media[g]);
-        std::vector<double> spectrum;
         table.values.resize(static_cast<std::size_t>(table.entries) * channels);
-        for (int k = 0; k < table.entries; ++k) {
-            response.transmission(table.first_um + k * table.step_um, spectrum);
+        response.transmission_series(table.first_um, table.step_um, table.entries, [&](int k, const std::vector<double>& spectrum) {
             if (integrator != nullptr) {
                 const Eigen::Vector3d xyz = integrator->integrate(spectrum);
                 for (int c = 0; c < 3; ++c) table.values[static_cast<std::size_t>(k) * 3 + c] = static_cast<float>(xyz[c]);
             } else {
                 table.values[k] = static_cast<float>(spectrum[0]);
             }
-        }
+        });
         relay.count_done(grains_done, static_cast<int>(grain_count));
     }
     relay.stop_if_cancelled();

@@ -6,8 +6,14 @@
 #include "petroscope/optics/orientation.hpp"
 #include "petroscope/optics/slab.hpp"
 
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
+#include <string>
+#include <utility>
 
 namespace petroscope {
 namespace {
@@ -48,29 +54,70 @@ OpticalMedium DispersiveMedium::at(double wavelength_nm) const {
     return OpticalMedium::from_n_kappa(principal_n(wavelength_nm), kappa, axes);
 }
 
+namespace {
+
+// The nodes and weights of the Gauss rule for ∫₀¹ u·g(u) du with n nodes, by Golub & Welsch (Math. Comp. 23, 221,
+// 1969): the eigenvalues of the Jacobi matrix of the Jacobi polynomials P^(0,1) on [−1, 1], mapped by u = (1 + x)/2.
+// Its recurrence: diagonal 1/((2k + 1)(2k + 3)), off-diagonal √(k(k + 1))/(2k + 1) (Gautschi, Orthogonal
+// Polynomials, 2004, Table 1.1); the weights are μ₀·v₀²/4 with μ₀ = ∫(1 + x)dx = 2 and v the unit eigenvectors.
+std::pair<Eigen::VectorXd, Eigen::VectorXd> gauss_nodes_weighted_by_u(int n) {
+    Eigen::MatrixXd jacobi = Eigen::MatrixXd::Zero(n, n);
+    for (int k = 0; k < n; ++k) {
+        jacobi(k, k) = 1.0 / ((2.0 * k + 1.0) * (2.0 * k + 3.0));
+        if (k > 0) jacobi(k, k - 1) = jacobi(k - 1, k) = std::sqrt(k * (k + 1.0)) / (2.0 * k + 1.0);
+    }
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(jacobi);
+    const Eigen::VectorXd nodes = (1.0 + solver.eigenvalues().array()) / 2.0;
+    const Eigen::VectorXd weights = solver.eigenvectors().row(0).transpose().array().square() / 2.0;
+    return {nodes, weights};
+}
+
+// The settings' directions; automatic rings (0) must have been resolved by the caller (condenser_rings_for).
+std::vector<IlluminationSample> resolved_condenser_samples(const MicroscopeSettings& settings) {
+    if (settings.condenser_na > 0.0 && settings.condenser_rings == 0) throw std::logic_error("the condenser's rings were not resolved");
+    return condenser_samples(settings.condenser_na, settings.condenser_rings);
+}
+
+}  // namespace
+
 std::vector<IlluminationSample> condenser_samples(double condenser_na, int rings) {
     if (!(condenser_na >= 0.0 && condenser_na < 1.0)) {
         throw InputError("condenser NA " + format_number(condenser_na) + " is out of range (expected 0 <= NA < 1)");
     }
     if (condenser_na == 0.0 || rings == 0) return {IlluminationSample{}};
-    if (rings < 0 || rings > 64) throw InputError("condenser rings must be 1 to 64");
-    // Ring k (k = 1 … rings) at radius k·h carries the annulus ((k − ½)h, (k + ½)h) split into 6k equal cells
-    // of area πh²/3; the axis carries the disc of radius h/2 (area πh²/4), h = NA/(rings + ½).
-    const double h = condenser_na / (rings + 0.5);
-    std::vector<IlluminationSample> samples{{Eigen::Vector2d::Zero(), 0.25}};
-    for (int k = 1; k <= rings; ++k) {
-        for (int j = 0; j < 6 * k; ++j) {
-            const double azimuth = 2.0 * std::numbers::pi * (j + 0.5 * (k % 2)) / (6 * k);
-            samples.push_back({k * h * Eigen::Vector2d(std::cos(azimuth), std::sin(azimuth)), 1.0 / 3.0});
+    if (rings < 0 || rings > kMaxCondenserRings) throw InputError("condenser rings must be 1 to " + std::to_string(kMaxCondenserRings));
+    // The mean over the disc |ξ| ≤ NA is ∫₀¹ du (1/2π)∮ f dφ with u = |ξ|²/NA². In u a Gauss–Radau rule with its
+    // fixed node at the centre: f(u) = f(0) + u·g(u), so ∫f = f(0) + Σⱼ Wⱼ(f(uⱼ) − f(0))/uⱼ with the rule for u·g
+    // (rings nodes), exact for polynomials of degree 2·rings in u. In φ, 4·rings + 2 equally spaced points,
+    // exact for trigonometric degree 4·rings + 1. Together exact for polynomials in ξ of degree 4·rings + 1
+    // (Stroud, Approximate Calculation of Multiple Integrals, 1971, §2.7): 7 directions for degree 5.
+    const auto [nodes, weights] = gauss_nodes_weighted_by_u(rings);
+    const int azimuths = 4 * rings + 2;
+    std::vector<IlluminationSample> samples{{Eigen::Vector2d::Zero(), 1.0}};
+    for (int j = 0; j < rings; ++j) {
+        const double ring_weight = weights[j] / nodes[j];
+        samples.front().weight -= ring_weight;
+        const double radius = condenser_na * std::sqrt(nodes[j]);
+        for (int m = 0; m < azimuths; ++m) {
+            const double azimuth = 2.0 * std::numbers::pi * (m + 0.5 * (j % 2)) / azimuths;  // alternate rings half a step apart
+            samples.push_back({radius * Eigen::Vector2d(std::cos(azimuth), std::sin(azimuth)), ring_weight / azimuths});
         }
     }
-    double total = 0.0;
-    for (const IlluminationSample& sample : samples) total += sample.weight;
-    for (IlluminationSample& sample : samples) sample.weight /= total;
     return samples;
 }
 
-int default_condenser_rings(double condenser_na) { return static_cast<int>(std::ceil(condenser_na / 0.05)); }
+int condenser_rings_for(double condenser_na, double phase_spread_rad) {
+    if (condenser_na == 0.0) return 0;
+    const double rings = std::ceil((phase_spread_rad + 1.0) / 4.0);
+    return static_cast<int>(std::clamp(rings, 1.0, static_cast<double>(kMaxCondenserRings)));
+}
+
+double condenser_phase_spread_rad(const MicroscopeSettings& microscope, const DispersiveMedium& crystal, double thickness_um) {
+    const double shortest_nm = *std::min_element(microscope.wavelengths_nm.begin(), microscope.wavelengths_nm.end());
+    const Eigen::Vector3d n = crystal.principal_n(shortest_nm);
+    const double birefringence = n.maxCoeff() - n.minCoeff();
+    return 2.0 * std::numbers::pi * thickness_um * birefringence * microscope.condenser_na / (shortest_nm * 1e-3 * n.minCoeff());
+}
 
 Eigen::Matrix2cd plate_jones_lab(const AccessoryPlate& plate, double wavelength_nm, bool exact) {
     // The plate is crossed at normal incidence, where (s, p) = (ŷ, x̂): its lab Jones matrix is S·J·Sᵀ.
@@ -82,9 +129,7 @@ Eigen::Matrix2cd plate_jones_lab(const AccessoryPlate& plate, double wavelength_
 }
 
 MicroscopeOptics::MicroscopeOptics(const MicroscopeSettings& settings, const SectionMounting& mounting)
-    : MicroscopeOptics(settings, mounting,
-                       condenser_samples(settings.condenser_na, settings.condenser_rings > 0 ? settings.condenser_rings
-                                                                                             : default_condenser_rings(settings.condenser_na))) {}
+    : MicroscopeOptics(settings, mounting, resolved_condenser_samples(settings)) {}
 
 MicroscopeOptics::MicroscopeOptics(const MicroscopeSettings& settings, const SectionMounting& mounting,
                                    std::vector<IlluminationSample> directions)
@@ -175,7 +220,7 @@ GrainResponse::GrainResponse(const MicroscopeOptics& optics, const DispersiveMed
     crystal_.axes = rotation_z_deg(settings.stage_deg) * crystal.axes;
     if (settings.exact) return;
     const std::vector<IlluminationSample>& directions = optics.directions();
-    samples_.reserve(settings.wavelengths_nm.size() * directions.size());
+    single_pass_.resize(settings.wavelengths_nm.size());
     for (std::size_t w = 0; w < settings.wavelengths_nm.size(); ++w) {
         const Eigen::Matrix3cd epsilon = crystal_.permittivity(settings.wavelengths_nm[w]);
         const Eigen::Matrix3d chirality = crystal_.chirality(settings.wavelengths_nm[w]);
@@ -185,16 +230,23 @@ GrainResponse::GrainResponse(const MicroscopeOptics& optics, const DispersiveMed
             // An active crystal's modes are elliptical, split even at normal incidence: the general solver serves it.
             const MediumWaves waves = directions[k].xi.isZero() && !active ? normal_incidence_waves(epsilon)
                                                                             : berreman_modes(epsilon, chirality, directions[k].xi);
+            if (waves[0].evanescent || waves[1].evanescent) continue;
             const Eigen::Vector2cd entry = forward_transmission(path.cement, waves) * path.into_crystal;
             const Eigen::Matrix2cd exit = path.to_eye * forward_transmission(waves, path.cement);
-            Sample sample;
-            for (int m = 0; m < 2; ++m) {
-                sample.amplitude[m] = exit.col(m) * entry[m];
-                sample.phase_per_um[m] = path.k0_per_um * waves[m].q;
-            }
-            sample.weight = directions[k].weight;
-            sample.propagating = !waves[0].evanescent && !waves[1].evanescent;
-            samples_.push_back(sample);
+            const std::array<Eigen::Vector2cd, 2> amplitude{exit.col(0) * entry[0], exit.col(1) * entry[1]};
+            const std::array<std::complex<double>, 2> phase{path.k0_per_um * waves[0].q, path.k0_per_um * waves[1].q};
+            const double weight = directions[k].weight;
+            Spectrum& spectrum = single_pass_[w];
+            const auto add = [&spectrum](std::complex<double> coefficient, std::complex<double> rate_per_um) {
+                if (rate_per_um == 0.0) {
+                    spectrum.constant += coefficient.real();
+                } else {
+                    spectrum.terms.push_back({coefficient, rate_per_um});
+                }
+            };
+            add(weight * amplitude[0].squaredNorm(), phase[0] - std::conj(phase[0]));
+            add(weight * amplitude[1].squaredNorm(), phase[1] - std::conj(phase[1]));
+            add(2.0 * weight * amplitude[1].dot(amplitude[0]), phase[0] - std::conj(phase[1]));
         }
     }
 }
@@ -218,15 +270,43 @@ void GrainResponse::transmission(double thickness_um, std::vector<double>& out) 
     }
     const std::complex<double> i(0.0, 1.0);
     for (std::size_t w = 0; w < wavelength_count; ++w) {
-        double sum = 0.0;
-        for (std::size_t k = 0; k < directions.size(); ++k) {
-            const Sample& sample = samples_[w * directions.size() + k];
-            if (!sample.propagating) continue;
-            const Eigen::Vector2cd field = sample.amplitude[0] * std::exp(i * sample.phase_per_um[0] * thickness_um) +
-                                           sample.amplitude[1] * std::exp(i * sample.phase_per_um[1] * thickness_um);
-            sum += sample.weight * field.squaredNorm();
-        }
+        double sum = single_pass_[w].constant;
+        for (const Term& term : single_pass_[w].terms) sum += (term.coefficient * std::exp(i * term.rate_per_um * thickness_um)).real();
         out[w] = sum;
+    }
+}
+
+void GrainResponse::transmission_series(double first_um, double step_um, int count,
+                                        const std::function<void(int, const std::vector<double>&)>& consume) const {
+    std::vector<double> spectrum;
+    if (optics_.settings().exact) {
+        for (int k = 0; k < count; ++k) {
+            transmission(first_um + k * step_um, spectrum);
+            consume(k, spectrum);
+        }
+        return;
+    }
+    // Each term's phasor c·exp(i·rate·d) at d = first_um, and its factor per step.
+    const std::complex<double> i(0.0, 1.0);
+    std::vector<std::complex<double>> phasor, factor;
+    for (const Spectrum& wavelength : single_pass_) {
+        for (const Term& term : wavelength.terms) {
+            phasor.push_back(term.coefficient * std::exp(i * term.rate_per_um * first_um));
+            factor.push_back(std::exp(i * term.rate_per_um * step_um));
+        }
+    }
+    spectrum.resize(single_pass_.size());
+    for (int k = 0; k < count; ++k) {
+        std::size_t t = 0;
+        for (std::size_t w = 0; w < single_pass_.size(); ++w) {
+            double sum = single_pass_[w].constant;
+            for (std::size_t end = t + single_pass_[w].terms.size(); t < end; ++t) {
+                sum += phasor[t].real();
+                phasor[t] *= factor[t];
+            }
+            spectrum[w] = sum;
+        }
+        consume(k, spectrum);
     }
 }
 

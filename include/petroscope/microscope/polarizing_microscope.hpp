@@ -85,25 +85,33 @@ struct Polars {
 };
 
 /// Directions of the illuminating plane waves: Köhler illumination with the condenser aperture filled
-/// uniformly (uniform in ξ over the disc |ξ| ≤ NA), sampled on `rings` rings of 6k points plus the axis
-/// (equal weights up to the centre cell's). NA 0 gives the axial wave alone (parallel light).
+/// uniformly (uniform in ξ over the disc |ξ| ≤ NA), sampled by a polar Gauss–Radau cubature: the axis and
+/// `rings` rings of 4·rings + 2 points, exact for polynomials in ξ of degree 4·rings + 1 (7 directions for one
+/// ring). NA 0 gives the axial wave alone (parallel light).
 struct IlluminationSample {
     Eigen::Vector2d xi = Eigen::Vector2d::Zero();
     double weight = 1.0;  // Σ weights = 1
 };
+constexpr int kMaxCondenserRings = 64;
 std::vector<IlluminationSample> condenser_samples(double condenser_na, int rings);
-/// Rings enough for a smooth cone: ⌈NA / 0.05⌉ (61 directions at NA 0.2).
-int default_condenser_rings(double condenser_na);
+/// The fewest rings whose cubature degree 4·rings + 1 reaches the phase spread + 2 (at least one ring): the
+/// error measured against a 16-ring reference is in docs/orthoscope.md.
+int condenser_rings_for(double condenser_na, double phase_spread_rad);
 
 struct MicroscopeSettings {
     Polars polars;
     double stage_deg = 0.0;
     double condenser_na = 0.0;
-    int condenser_rings = 0;  // 0: default_condenser_rings
+    int condenser_rings = 0;  // 0: automatic, resolved by the caller from its crystals (condenser_rings_for)
     std::optional<AccessoryPlate> plate;
     bool exact = false;  // coherent 4×4 per element instead of single pass
     std::vector<double> wavelengths_nm{589.3};
 };
+
+/// How much the phase difference of the crystal's two waves can change between the condenser cone's axis and
+/// its rim at this thickness, in radians: 2π·d·B·NA/(λ·n) at the shortest wavelength, taking |∂(Δn)/∂θ| ≤ B
+/// (the birefringence) and the angle NA/n inside the crystal (n its smallest principal index).
+double condenser_phase_spread_rad(const MicroscopeSettings& microscope, const DispersiveMedium& crystal, double thickness_um);
 
 /// Everything of the microscope that does not depend on the grain, per wavelength and illumination direction:
 /// the light from the polarizer up to the crystal's lower face (as forward waves of the cement), and from the
@@ -171,17 +179,25 @@ public:
     GrainResponse(const MicroscopeOptics& optics, const DispersiveMedium& crystal);
     /// Transmission per wavelength of the settings, written to `out`.
     void transmission(double thickness_um, std::vector<double>& out) const;
+    /// The transmissions at `count` thicknesses first_um + k·step_um, in order: `consume(k, spectrum)`. Single
+    /// pass: each term advances by one complex product per step instead of an exponential.
+    void transmission_series(double first_um, double step_um, int count,
+                             const std::function<void(int, const std::vector<double>&)>& consume) const;
 
 private:
-    struct Sample {  // one direction at one wavelength: the analyzed field is Σₘ amplitude[m]·exp(i·phase[m]·d)
-        std::array<Eigen::Vector2cd, 2> amplitude;
-        std::array<std::complex<double>, 2> phase_per_um;
-        double weight = 0.0;
-        bool propagating = true;
+    /// One wavelength's transmission as a function of the thickness d: constant + Σ Re(coefficient·exp(i·rate·d)).
+    /// The analyzed field of a direction, a₀e^{iφ₀d} + a₁e^{iφ₁d}, squares to |a₀|²e^{i(φ₀−φ₀*)d} +
+    /// |a₁|²e^{i(φ₁−φ₁*)d} + 2Re(a₁ᴴa₀·e^{i(φ₀−φ₁*)d}); terms with a zero rate (no absorption) join the constant.
+    struct Term {
+        std::complex<double> coefficient, rate_per_um;
+    };
+    struct Spectrum {
+        double constant = 0.0;
+        std::vector<Term> terms;
     };
     const MicroscopeOptics& optics_;
     DispersiveMedium crystal_;
-    std::vector<Sample> samples_;  // single pass: [wavelength][direction]
+    std::vector<Spectrum> single_pass_;  // per wavelength; empty in exact mode
 };
 
 }  // namespace petroscope
