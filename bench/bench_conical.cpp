@@ -1,5 +1,8 @@
-// Conical diffraction speed: a Gaussian beam's focal image (ρ₀ = 20, Z = 0) at one wavelength, the profile
-// B₀(ρ), B₁(ρ) and then the screen, on all cores (OpenMP). The profile spacing is a third of a pixel.
+// Conical refraction speed, on all cores (OpenMP). Wave optics: a Gaussian beam's focal image (ρ₀ = 20, Z = 0)
+// at one wavelength, the profile B₀(ρ), B₁(ρ) and then the screen; the profile spacing is a third of a pixel.
+// Ray optics: the paper's pinhole scene (KGW 20 mm at 633 nm, 25 µm pinhole in a 50 mm filter, screen 50 mm
+// behind), traced and its rings measured (issue 22's goal: 10⁶ rays in at most 2 s).
+#include "petroscope/microscope/conical_ray.hpp"
 #include "petroscope/microscope/conical_wave.hpp"
 
 #include <benchmark/benchmark.h>
@@ -35,8 +38,20 @@ void GaussianProfile(benchmark::State& state) {
     }
 }
 
+void PinholeRays(benchmark::State& state) {
+    ConicalRaySettings settings;  // KGW at 633 nm, 20 mm, screen 50 mm behind
+    settings.filter_um = 50000.0;
+    settings.rays = state.range(0);
+    for (auto _ : state) {
+        const ConicalRayResult result = trace_conical_rays(settings);
+        benchmark::DoNotOptimize(result.screen.pixels.data());
+    }
+    state.counters["rays_per_s"] = benchmark::Counter(static_cast<double>(settings.rays), benchmark::Counter::kIsIterationInvariantRate);
+}
+
 BENCHMARK(GaussianScreen)->Arg(512)->Arg(1024)->Arg(2048)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(GaussianProfile)->Arg(1024)->Arg(4096)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(PinholeRays)->Arg(200000)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 }  // namespace petroscope

@@ -2,7 +2,8 @@
 
 #include "petroscope/core/angles.hpp"
 #include "petroscope/core/error.hpp"
-#include "petroscope/optics/interface.hpp"
+#include "petroscope/microscope/layer_stack.hpp"
+#include "petroscope/optics/medium.hpp"
 #include "petroscope/optics/orientation.hpp"
 #include "petroscope/optics/polarization.hpp"
 
@@ -12,11 +13,33 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <vector>
 
 namespace petroscope {
 namespace {
 
-Eigen::Vector2d uniform_in_disc(std::mt19937_64& rng, double radius) {
+// Each ray's own random stream, SplitMix64 (Steele, Lea & Flood, OOPSLA 2014): the state advances by the
+// golden-ratio increment and is mixed by two xor-shift-multiply rounds. Seeding is one addition, so every ray
+// can start its own stream (the result does not depend on how rays are split over threads).
+class RayRandom {
+public:
+    using result_type = std::uint64_t;
+    explicit RayRandom(std::uint64_t seed) : state_(seed) {}
+    static constexpr result_type min() { return 0; }
+    static constexpr result_type max() { return ~result_type{0}; }
+    result_type operator()() {
+        state_ += 0x9E3779B97F4A7C15ULL;
+        result_type z = state_;
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+        return z ^ (z >> 31);
+    }
+
+private:
+    std::uint64_t state_;
+};
+
+Eigen::Vector2d uniform_in_disc(RayRandom& rng, double radius) {
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     const double r = radius * std::sqrt(unit(rng)), phi = 2.0 * std::numbers::pi * unit(rng);
     return {r * std::cos(phi), r * std::sin(phi)};
@@ -26,12 +49,40 @@ struct Landing {
     double x, y, weight;
 };
 
+double distance(const Landing& landing, const Eigen::Vector2d& centre) {
+    const double dx = landing.x - centre.x(), dy = landing.y - centre.y();
+    return std::sqrt(dx * dx + dy * dy);
+}
+
+// The first value, in increasing order of (value, weight), at which the running sum of the weights reaches
+// `target` (the last value if it never does): quickselect, O(n) on average (Hoare 1961), the same value as a
+// full sort and a scan would give.
+double weighted_quantile(std::vector<std::pair<double, double>> items, double target) {
+    if (items.empty()) return 0.0;
+    auto first = items.begin(), last = items.end();
+    while (first != last) {
+        const auto middle = first + (last - first) / 2;
+        std::nth_element(first, middle, last);
+        double below = 0.0;
+        for (auto item = first; item != middle; ++item) below += item->second;
+        if (below >= target) {
+            last = middle;
+        } else if (below + middle->second >= target) {
+            return middle->first;
+        } else {
+            target -= below + middle->second;
+            first = middle + 1;
+        }
+    }
+    return first == items.end() ? std::max_element(items.begin(), items.end())->first : first->first;
+}
+
 // The radial power density about `centre` (rings of width `bin`), smoothed over 2·half_window + 1 bins.
 std::vector<double> radial_density(const std::vector<Landing>& landings, const Eigen::Vector2d& centre, double bin, std::size_t bins,
                                    std::size_t half_window) {
     std::vector<double> power(bins, 0.0);
     for (const Landing& landing : landings) {
-        const auto index = static_cast<std::size_t>(std::hypot(landing.x - centre.x(), landing.y - centre.y()) / bin);
+        const auto index = static_cast<std::size_t>(distance(landing, centre) / bin);
         if (index < bins) power[index] += landing.weight;
     }
     std::vector<double> density(bins, 0.0);
@@ -73,21 +124,13 @@ ConicalRayRings measure_rings(const std::vector<Landing>& landings, double ring_
     // Smoothing and the separation of the two bright rings scale with the pattern's own width: the spread
     // s of the landing radii about their (power-weighted) median; the rings lie about s apart.
     std::vector<std::pair<double, double>> radii;  // (radius, weight)
-    for (const Landing& landing : landings) radii.emplace_back(std::hypot(landing.x - rings.centre_um.x(), landing.y - rings.centre_um.y()), landing.weight);
-    std::sort(radii.begin(), radii.end());
-    const auto weighted_quantile = [&](const std::vector<std::pair<double, double>>& sorted, double fraction) {
-        double accumulated = 0.0;
-        for (const auto& [value, weight] : sorted) {
-            accumulated += weight;
-            if (accumulated >= fraction * total) return value;
-        }
-        return sorted.back().first;
-    };
-    const double median = weighted_quantile(radii, 0.5);
+    radii.reserve(landings.size());
+    for (const Landing& landing : landings) radii.emplace_back(distance(landing, rings.centre_um), landing.weight);
+    const double median = weighted_quantile(radii, 0.5 * total);
     std::vector<std::pair<double, double>> deviations;
+    deviations.reserve(radii.size());
     for (const auto& [radius, weight] : radii) deviations.emplace_back(std::abs(radius - median), weight);
-    std::sort(deviations.begin(), deviations.end());
-    const double spread = weighted_quantile(deviations, 0.5);
+    const double spread = weighted_quantile(deviations, 0.5 * total);
     const std::size_t half_window = std::max<std::size_t>(1, static_cast<std::size_t>(0.25 * spread / bin));
     const std::size_t separation = std::max<std::size_t>(2, static_cast<std::size_t>(spread / bin));
     const std::vector<double> density = radial_density(landings, rings.centre_um, bin, bins, half_window);
@@ -108,15 +151,19 @@ ConicalRayRings measure_rings(const std::vector<Landing>& landings, double ring_
     return rings;
 }
 
-// The incident state, given by a Stokes vector in the lab frame (x, y), in the ray's own (s, p) basis of
-// docs/interface.md: ŝ = ẑ × k̂ normalised (ŷ at normal incidence), p̂ = ŝ × k̂. C_sp = T·C_xy·T† with
-// T's rows the transverse parts of ŝ and p̂.
-CoherencyMatrix ray_coherency(const Eigen::Vector4d& lab_stokes, const Eigen::Vector3d& k_hat) {
+// A ray's (s, p) basis (docs/interface.md): columns ŝ = ẑ × k̂ normalised (ŷ at normal incidence) and p̂ = ŝ × k̂.
+Eigen::Matrix<double, 3, 2> sp_basis(const Eigen::Vector3d& k_hat) {
     Eigen::Vector3d s_hat = Eigen::Vector3d::UnitZ().cross(k_hat);
     s_hat = s_hat.norm() > 1e-15 ? Eigen::Vector3d(s_hat.normalized()) : Eigen::Vector3d::UnitY();
-    const Eigen::Vector3d p_hat = s_hat.cross(k_hat);
-    Eigen::Matrix2cd transform;
-    transform << s_hat.x(), s_hat.y(), p_hat.x(), p_hat.y();
+    Eigen::Matrix<double, 3, 2> basis;
+    basis << s_hat, s_hat.cross(k_hat);
+    return basis;
+}
+
+// The incident state, given by a Stokes vector in the lab frame (x, y), in the ray's own (s, p) basis:
+// C_sp = T·C_xy·T† with T's rows the transverse parts of ŝ and p̂.
+CoherencyMatrix ray_coherency(const Eigen::Vector4d& lab_stokes, const Eigen::Vector3d& k_hat) {
+    const Eigen::Matrix2cd transform = sp_basis(k_hat).topRows<2>().transpose().cast<std::complex<double>>();
     // In the lab's (x, y) basis the Stokes convention of optics/polarization.hpp reads with (x, y) for (s, p).
     const CoherencyMatrix lab = coherency_from_stokes(lab_stokes);
     return transform * lab * transform.adjoint();
@@ -143,6 +190,39 @@ void validate(const ConicalRaySettings& s) {
 
 }  // namespace
 
+SlabCrossing cross_slab(const Eigen::Matrix3cd& crystal_epsilon, const Eigen::Vector3d& direction, const CoherencyMatrix& coherency_sp) {
+    const Eigen::Vector2d xi = direction.head<2>();
+    const MediumWaves air = berreman_modes(Eigen::Matrix3cd::Identity(), xi);
+    const MediumWaves crystal = berreman_modes(crystal_epsilon, xi);
+    // The incident coherency in the air's forward waves (unit E fields): the (s, p) basis projected on them.
+    const Eigen::Matrix<std::complex<double>, 3, 2> basis = sp_basis(direction).cast<std::complex<double>>();
+    Eigen::Matrix2cd to_waves;
+    for (int m = 0; m < 2; ++m) to_waves.row(m) = air[m].e_field.adjoint() * basis;
+    const Eigen::Matrix2cd incident = to_waves * coherency_sp * to_waves.adjoint();
+    // Waves of one direction in a lossless medium carry no cross flux, so powers add: |S_z|·(coherency)ₘₘ.
+    const auto power = [](const BerremanMode& first, const BerremanMode& second, const Eigen::Matrix2cd& coherency) {
+        return std::abs(first.flux_z) * coherency(0, 0).real() + std::abs(second.flux_z) * coherency(1, 1).real();
+    };
+    const double incident_flux = power(air[0], air[1], incident);
+    const ForwardBoundary entry = forward_boundary(air, crystal);
+    const Eigen::Matrix2cd inside = entry.transmission * incident * entry.transmission.adjoint();
+    SlabCrossing crossing;
+    crossing.largest_power_sum = (power(crystal[0], crystal[1], inside) +
+                                  power(air[2], air[3], entry.reflection * incident * entry.reflection.adjoint())) / incident_flux;
+    const ForwardBoundary exit = forward_boundary(crystal, air);
+    for (int m = 0; m < 2; ++m) {
+        const double carried = crystal[m].flux_z * inside(m, m).real() / incident_flux;
+        if (crystal[m].evanescent || !(carried > 0.0)) continue;
+        const Eigen::Matrix2cd unit = Eigen::Vector2cd::Unit(m) * Eigen::RowVector2cd::Unit(m);
+        const double transmitted = power(air[0], air[1], exit.transmission * unit * exit.transmission.adjoint()) / crystal[m].flux_z;
+        const double reflected = power(crystal[2], crystal[3], exit.reflection * unit * exit.reflection.adjoint()) / crystal[m].flux_z;
+        crossing.largest_power_sum = std::max(crossing.largest_power_sum, transmitted + reflected);
+        const Eigen::Vector3d poynting = crystal[m].e_field.cross(crystal[m].h_field.conjugate()).real();
+        crossing.waves.push_back({poynting.normalized(), carried * transmitted});
+    }
+    return crossing;
+}
+
 double conical_cone_angle_rad(const Eigen::Vector3d& principal_n) {
     Eigen::Vector3d n = principal_n;
     std::sort(n.data(), n.data() + 3);
@@ -160,15 +240,14 @@ ConicalRayResult trace_conical_rays(const ConicalRaySettings& settings, const Pr
     // rotation azimuth (orientation.hpp's optic-axis cut).
     const Eigen::Matrix3d axes =
         cut_orientation(Cut::optic_axis, OpticalClass::biaxial, settings.principal_n, settings.rotate_deg, settings.tilt_deg);
-    const OpticalMedium crystal{settings.principal_n.cast<std::complex<double>>(), axes};
-    const OpticalMedium air = OpticalMedium::isotropic(1.0);
-    const Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+    const Eigen::Matrix3cd crystal_epsilon = OpticalMedium{settings.principal_n.cast<std::complex<double>>(), axes}.permittivity();
     const double azimuth = settings.rotate_deg * kDegree;
     result.ring_centre_um = result.ring_radius_um * Eigen::Vector2d(std::cos(azimuth), std::sin(azimuth));
     const double half_width = settings.half_width_um > 0.0 ? settings.half_width_um : 2.0 * result.ring_radius_um;
     const int size = settings.size_px;
     result.screen = Image(size, size, 1);
-    std::vector<Landing> landings;
+    // Two slots per ray (its two waves), so that threads write without merging; unused slots keep weight 0.
+    std::vector<Landing> landings(2 * static_cast<std::size_t>(settings.rays), Landing{0.0, 0.0, 0.0});
     const double pixel_um = 2.0 * half_width / size;
     double max_sum = 0.0;
     std::int64_t non_finite = 0;
@@ -177,11 +256,10 @@ ConicalRayResult trace_conical_rays(const ConicalRaySettings& settings, const Pr
 #pragma omp parallel reduction(max : max_sum) reduction(+ : non_finite)
     {
         Image local(size, size, 1);
-        std::vector<Landing> local_landings;
 #pragma omp for schedule(dynamic, 256)
         for (std::int64_t ray = 0; ray < settings.rays; ++ray) {
             if (relay.cancelled()) continue;
-            std::mt19937_64 rng(settings.seed * 0x9E3779B97F4A7C15ULL + static_cast<std::uint64_t>(ray));
+            RayRandom rng(settings.seed * 0xD1B54A32D192ED03ULL + static_cast<std::uint64_t>(ray) * 0x8CB92BA72F3D8DD7ULL);
             Eigen::Vector2d start = Eigen::Vector2d::Zero();
             Eigen::Vector3d direction;
             if (settings.source == ConicalRaySettings::Source::pinhole) {
@@ -194,47 +272,29 @@ ConicalRayResult trace_conical_rays(const ConicalRaySettings& settings, const Pr
                 const double tx = angle(rng), ty = angle(rng);
                 direction = Eigen::Vector3d(std::tan(tx), std::tan(ty), 1.0).normalized();
             }
-            InterfaceIncidence incidence;
-            incidence.direction = direction;
-            incidence.coherency = ray_coherency(settings.stokes, direction);
-            const InterfaceResult entry = solve_interface(normal, incidence, air, crystal);
-            double entry_sum = 0.0;
-            for (const InterfaceWave& wave : entry.waves) entry_sum += wave.power;
-            max_sum = std::max(max_sum, entry_sum);
-            for (const InterfaceWave& inside : entry.waves) {
-                if (inside.kind != InterfaceWave::Kind::transmitted || inside.evanescent || inside.power <= 0.0) continue;
-                // Along the ray (Poynting) direction to the exit face, then out into air.
-                const Eigen::Vector3d exit_point = Eigen::Vector3d(start.x(), start.y(), 0.0) + inside.ray_direction * (settings.slab_um / inside.ray_direction.z());
-                InterfaceIncidence internal;
-                internal.direction = inside.direction;
-                internal.mode = inside.mode;
-                const InterfaceResult exit = solve_interface(normal, internal, crystal, air);
-                double exit_sum = 0.0;
-                for (const InterfaceWave& wave : exit.waves) exit_sum += wave.power;
-                max_sum = std::max(max_sum, exit_sum);
-                for (const InterfaceWave& out : exit.waves) {
-                    if (out.kind != InterfaceWave::Kind::transmitted || out.evanescent) continue;
-                    const Eigen::Vector3d landing = exit_point + out.direction * (settings.screen_distance_um / out.direction.z());
-                    const double weight = inside.power * out.power;
-                    if (!landing.allFinite() || !std::isfinite(weight)) {
-                        ++non_finite;
-                        continue;
-                    }
-                    const int column = static_cast<int>(std::floor((landing.x() - result.ring_centre_um.x() + half_width) / pixel_um));
-                    const int row = static_cast<int>(std::floor((half_width - (landing.y() - result.ring_centre_um.y())) / pixel_um));
-                    if (column >= 0 && column < size && row >= 0 && row < size) local.at(column, row, 0) += static_cast<float>(weight);
-                    local_landings.push_back({landing.x(), landing.y(), weight});
+            const SlabCrossing crossing = cross_slab(crystal_epsilon, direction, ray_coherency(settings.stokes, direction));
+            max_sum = std::max(max_sum, crossing.largest_power_sum);
+            for (std::size_t k = 0; k < crossing.waves.size(); ++k) {
+                const SlabWave& wave = crossing.waves[k];
+                // Along the ray (Poynting) direction to the exit face, then on along the incident direction.
+                const Eigen::Vector3d exit_point = Eigen::Vector3d(start.x(), start.y(), 0.0) + wave.ray_direction * (settings.slab_um / wave.ray_direction.z());
+                const Eigen::Vector3d landing = exit_point + direction * (settings.screen_distance_um / direction.z());
+                if (!landing.allFinite() || !std::isfinite(wave.weight)) {
+                    ++non_finite;
+                    continue;
                 }
+                const int column = static_cast<int>(std::floor((landing.x() - result.ring_centre_um.x() + half_width) / pixel_um));
+                const int row = static_cast<int>(std::floor((half_width - (landing.y() - result.ring_centre_um.y())) / pixel_um));
+                if (column >= 0 && column < size && row >= 0 && row < size) local.at(column, row, 0) += static_cast<float>(wave.weight);
+                landings[2 * static_cast<std::size_t>(ray) + k] = {landing.x(), landing.y(), wave.weight};
             }
             if (ray % 4096 == 0) relay.report(static_cast<double>(ray) / static_cast<double>(settings.rays));
         }
 #pragma omp critical
-        {
-            for (std::size_t i = 0; i < local.pixels.size(); ++i) result.screen.pixels[i] += local.pixels[i];
-            landings.insert(landings.end(), local_landings.begin(), local_landings.end());
-        }
+        for (std::size_t i = 0; i < local.pixels.size(); ++i) result.screen.pixels[i] += local.pixels[i];
     }
     relay.finish();
+    std::erase_if(landings, [](const Landing& landing) { return landing.weight == 0.0; });
     result.rings = measure_rings(landings, result.ring_radius_um);
     result.max_interface_power_sum = max_sum;
     result.non_finite = non_finite;

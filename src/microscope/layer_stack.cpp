@@ -19,13 +19,16 @@ Eigen::Matrix3cd ambient_permittivity(double ambient_n) {
 
 }  // namespace
 
-Eigen::Matrix2cd forward_transmission(const MediumWaves& from, const MediumWaves& to) {
+ForwardBoundary forward_boundary(const MediumWaves& from, const MediumWaves& to) {
     Eigen::Matrix4cd boundary;
     boundary << to[0].psi, to[1].psi, -from[2].psi, -from[3].psi;
     Eigen::Matrix<std::complex<double>, 4, 2> incident;
     incident << from[0].psi, from[1].psi;
-    return boundary.partialPivLu().solve(incident).topRows<2>();
+    const Eigen::Matrix<std::complex<double>, 4, 2> amplitudes = boundary.partialPivLu().solve(incident);
+    return {amplitudes.topRows<2>(), amplitudes.bottomRows<2>()};
 }
+
+Eigen::Matrix2cd forward_transmission(const MediumWaves& from, const MediumWaves& to) { return forward_boundary(from, to).transmission; }
 
 Eigen::Matrix2cd forward_propagation(const MediumWaves& waves, double k0_per_um, double thickness_um) {
     const std::complex<double> i(0.0, 1.0);

@@ -1,8 +1,8 @@
 #pragma once
 // Internal conical refraction in ray optics: the paper's scene. A filter of thickness h with a pinhole
 // of radius R lies on a biaxial slab (thickness d) cut perpendicular to a binormal; rays through the
-// pinhole are traced through both faces with the exact interface model (optics/interface.hpp) and
-// collected on a screen at distance D behind the slab (docs/theory.md §8).
+// pinhole are traced through both faces with the exact plane-wave modes (optics/berreman.hpp; checked against
+// the interface model of optics/interface.hpp) and collected on a screen at distance D behind the slab (docs/theory.md §8).
 #include "petroscope/core/image.hpp"
 #include "petroscope/core/progress.hpp"
 
@@ -55,6 +55,22 @@ struct ConicalRayResult {
 
 /// tan χ = √((nβ² − nα²)(nγ² − nβ²))/(nα nγ) (Born & Wolf §15.3.4; docs/theory.md §8) for indices in any order.
 double conical_cone_angle_rad(const Eigen::Vector3d& principal_n);
+
+/// One ray through the slab: its two waves inside, each with its ray (Poynting) direction and the fraction of
+/// the incident power that it carries out of the exit face. Every wave of the ray shares the tangential
+/// wavevector ξ of the incident one (Snell's law): Berreman's modes of air and crystal for that ξ
+/// (optics/berreman.hpp) and the boundary conditions at each face (forward_boundary: the forward waves
+/// matched with the reflected ones) give it all; the wave leaving the exit face travels along the incident
+/// direction. `coherency_sp`: the incident light in the ray's (s, p) basis (docs/interface.md).
+struct SlabWave {
+    Eigen::Vector3d ray_direction = Eigen::Vector3d::UnitZ();
+    double weight = 0.0;
+};
+struct SlabCrossing {
+    std::vector<SlabWave> waves;     // the propagating ones that carry power
+    double largest_power_sum = 0.0;  // reflected + transmitted at the entry face, and at the exit face per wave
+};
+SlabCrossing cross_slab(const Eigen::Matrix3cd& crystal_epsilon, const Eigen::Vector3d& direction, const Eigen::Matrix2cd& coherency_sp);
 
 /// Traces the rays (in parallel); throws InputError for a non-biaxial crystal or non-positive lengths.
 ConicalRayResult trace_conical_rays(const ConicalRaySettings& settings, const ProgressCallback& progress = {});

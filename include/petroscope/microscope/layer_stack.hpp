@@ -48,8 +48,16 @@ using MediumWaves = std::array<BerremanMode, 4>;
 /// the free phase and scale of each wave.
 MediumWaves normal_incidence_waves(const Eigen::Matrix3cd& epsilon);
 
-/// Forward waves of `from` → forward waves of `to` at their common interface, in the two media's wave bases,
-/// with nothing coming back down from `to` (single pass; Berreman 1972 eq. 13, tangential E and H continuous).
+/// Forward waves of `from` meeting `to` at their common interface, with nothing coming back down from `to`
+/// (Berreman 1972 eq. 13, tangential E and H continuous): the amplitudes of `to`'s forward waves and of
+/// `from`'s backward waves (berreman_modes 2, 3) per unit amplitude of each incident forward wave (columns).
+struct ForwardBoundary {
+    Eigen::Matrix2cd transmission, reflection;
+};
+ForwardBoundary forward_boundary(const MediumWaves& from, const MediumWaves& to);
+
+/// Forward waves of `from` → forward waves of `to` at their common interface, in the two media's wave bases
+/// (single pass: forward_boundary's transmission).
 Eigen::Matrix2cd forward_transmission(const MediumWaves& from, const MediumWaves& to);
 
 /// Propagation of the forward waves across a layer: diag(exp(i·k₀·qₘ·d)), k₀ in rad/µm.
