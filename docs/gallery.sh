@@ -127,7 +127,7 @@ figure conical-wave-unpolarized "Wave optics (Belsky–Khapalyuk–Berry), Gauss
     conical --crystal KGW --length 20mm --wavelength 633nm --size 512
 figure conical-wave-linear30 "Wave optics, linear polarization at 30°: a crescent, brightest at azimuth 60° (twice the polarization angle)." \
     conical --crystal KGW --length 20mm --wavelength 633nm --polarization linear:30 --waist 20um --size 512
-figure conical-ray "Ray optics: rays through a 25 µm pinhole in a 50 mm filter, each refracted by the exact interface model and traced to a screen 50 mm behind the slab." \
+figure conical-ray "Ray optics: rays through a 25 µm pinhole in a 50 mm filter, each split into the crystal's two exact plane-wave modes and traced to a screen 50 mm behind the slab." \
     conical --crystal KGW --length 20mm --wavelength 633nm --mode ray --pinhole 25um --filter 50mm --screen-distance 50mm --size 512
 
 # ---------------------------------------------------------------------------------------------------------

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -67,7 +68,7 @@ struct SlabWave {
     double weight = 0.0;
 };
 struct SlabCrossing {
-    std::vector<SlabWave> waves;     // the propagating ones that carry power
+    std::array<SlabWave, 2> waves;   // weight 0: evanescent, or carrying no power
     double largest_power_sum = 0.0;  // reflected + transmitted at the entry face, and at the exit face per wave
 };
 SlabCrossing cross_slab(const Eigen::Matrix3cd& crystal_epsilon, const Eigen::Vector3d& direction, const Eigen::Matrix2cd& coherency_sp);
