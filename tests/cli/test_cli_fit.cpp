@@ -86,6 +86,7 @@ TEST_F(FitCli, BadPhotosAndOptionsAreRefused) {
     expect_rejected("fit conoscope --photo " + testing::quoted(photo) + tail + " --free thickness,colour", {"--free", "colour", "white-balance"});
     expect_rejected("fit conoscope --photo " + testing::quoted(photo) + tail + " --fix scale=3", {"--fix", "scale", "field_radius_px"});
     expect_rejected("fit conoscope --photo " + testing::quoted(photo) + tail + " --fix gamma", {"--fix", "NAME=VALUE"});
+    expect_rejected("fit conoscope --photo " + testing::quoted(photo) + tail + " --handedness sideways", {"--handedness", "'sideways'", "expected right or left"});
     expect_rejected("fit conoscope --photo " + testing::quoted(photo) + " --mineral quartz --thickness-range 5mm:1mm -o " + testing::quoted(out()),
                     {"--thickness-range", "maximum"});
 }
