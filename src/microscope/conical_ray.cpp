@@ -56,16 +56,21 @@ double distance(const Landing& landing, const Eigen::Vector2d& centre) {
     return std::sqrt(dx * dx + dy * dy);
 }
 
-// One step of weighted_quantile: the (value, weight) of the items in the one of 4096 bins of value where the
-// running sum of the weights (from `below`) reaches `target`, with `below` moved up to that bin; every item when
-// there are few. False, with the answer, when no bin is needed: all values equal, or the target never reached.
+struct WeightedValue {
+    double value, weight;
+    bool operator<(const WeightedValue& other) const { return value != other.value ? value < other.value : weight < other.weight; }
+};
+
+// One step of weighted_quantile: the items whose value lies in the one of 4096 bins of value where the running
+// sum of the weights (from `below`) reaches `target`, with `below` moved up to that bin; every item when there
+// are few. False, with the answer, when no bin is needed: all values equal, or the target never reached.
 constexpr std::size_t kQuantileBins = 4096;
 template <typename Item, typename ValueOf>
 bool narrow_to_crossing_bin(const std::vector<Item>& items, const ValueOf& value_of, double target, double& below,
-                            std::vector<std::pair<double, double>>& kept, double& answer) {
+                            std::vector<WeightedValue>& kept, double& answer) {
     kept.clear();
     if (items.size() <= kQuantileBins) {
-        for (const Item& item : items) kept.emplace_back(value_of(item), item.weight);
+        for (const Item& item : items) kept.push_back({value_of(item), item.weight});
         return true;
     }
     double low = value_of(items.front()), high = low;
@@ -83,14 +88,10 @@ bool narrow_to_crossing_bin(const std::vector<Item>& items, const ValueOf& value
     while (crossing < kQuantileBins && below + bin_weight[crossing] < target) below += bin_weight[crossing++];
     if (crossing == kQuantileBins) return false;
     for (const Item& item : items) {
-        if (bin_of(value_of(item)) == crossing) kept.emplace_back(value_of(item), item.weight);
+        if (bin_of(value_of(item)) == crossing) kept.push_back({value_of(item), item.weight});
     }
     return true;
 }
-
-struct WeightedValue {
-    double value, weight;
-};
 
 // The first value, in increasing order of (value, weight), at which the running sum of the weights reaches
 // `target` (the largest value if it never does), as a sort and a scan would give it, in O(n): bins narrow the
@@ -99,19 +100,18 @@ template <typename Item, typename ValueOf>
 double weighted_quantile(const std::vector<Item>& items, const ValueOf& value_of, double target) {
     if (items.empty()) return 0.0;
     double below = 0.0, answer = 0.0;
-    std::vector<std::pair<double, double>> kept;
+    std::vector<WeightedValue> kept, candidates;
     if (!narrow_to_crossing_bin(items, value_of, target, below, kept, answer)) return answer;
     while (kept.size() > kQuantileBins) {
-        std::vector<WeightedValue> candidates;
-        for (const auto& [value, weight] : kept) candidates.push_back({value, weight});
+        std::swap(candidates, kept);
         if (!narrow_to_crossing_bin(candidates, [](const WeightedValue& c) { return c.value; }, target, below, kept, answer)) return answer;
     }
     std::sort(kept.begin(), kept.end());
-    for (const auto& [value, weight] : kept) {
-        below += weight;
-        if (below >= target) return value;
+    for (const WeightedValue& item : kept) {
+        below += item.weight;
+        if (below >= target) return item.value;
     }
-    return kept.empty() ? answer : kept.back().first;
+    return kept.empty() ? answer : kept.back().value;
 }
 
 // The radial power density of landings given by their radius (in x) in rings of width `bin`, smoothed over

@@ -63,11 +63,6 @@ struct GrainTable {
     std::vector<float> values;
 };
 
-double largest_birefringence(const DispersiveMedium& medium, double wavelength_nm) {
-    const Eigen::Vector3d n = medium.principal_n(wavelength_nm);
-    return n.maxCoeff() - n.minCoeff();
-}
-
 }  // namespace
 
 int section_condenser_rings(const ThinSection& section, const MineralCatalog& catalog, const MicroscopeSettings& microscope) {
@@ -157,7 +152,7 @@ Image render_orthoscope(const ThinSection& section, const MineralCatalog& catalo
         const double span = thickest[g] - thinnest[g];
         table.first_um = thinnest[g];
         if (span > 0.0) {
-            const double birefringence = std::max(largest_birefringence(media[g], middle_wavelength_nm), 1e-4);
+            const double birefringence = std::max(media[g].birefringence(middle_wavelength_nm), 1e-4);
             table.entries = std::min(kMaxTableEntries, static_cast<int>(std::ceil(span * birefringence / kRetardationStepUm)) + 1);
             table.step_um = span / (table.entries - 1);
         }

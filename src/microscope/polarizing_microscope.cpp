@@ -27,6 +27,11 @@ Eigen::Matrix2d sp_to_lab(const TangentialWavevector& direction) {
 
 }  // namespace
 
+double DispersiveMedium::birefringence(double wavelength_nm) const {
+    const Eigen::Vector3d n = principal_n(wavelength_nm);
+    return n.maxCoeff() - n.minCoeff();
+}
+
 Eigen::Matrix3d DispersiveMedium::chirality(double wavelength_nm) const {
     if (!gyration) return Eigen::Matrix3d::Zero();
     return chirality_tensor(turned_gyration(gyration(wavelength_nm), axes));
@@ -114,9 +119,8 @@ int condenser_rings_for(double condenser_na, double phase_spread_rad) {
 
 double condenser_phase_spread_rad(const MicroscopeSettings& microscope, const DispersiveMedium& crystal, double thickness_um) {
     const double shortest_nm = *std::min_element(microscope.wavelengths_nm.begin(), microscope.wavelengths_nm.end());
-    const Eigen::Vector3d n = crystal.principal_n(shortest_nm);
-    const double birefringence = n.maxCoeff() - n.minCoeff();
-    return 2.0 * std::numbers::pi * thickness_um * birefringence * microscope.condenser_na / (shortest_nm * 1e-3 * n.minCoeff());
+    const double smallest_n = crystal.principal_n(shortest_nm).minCoeff();
+    return 2.0 * std::numbers::pi * thickness_um * crystal.birefringence(shortest_nm) * microscope.condenser_na / (shortest_nm * 1e-3 * smallest_n);
 }
 
 Eigen::Matrix2cd plate_jones_lab(const AccessoryPlate& plate, double wavelength_nm, bool exact) {

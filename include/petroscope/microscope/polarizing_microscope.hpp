@@ -35,6 +35,8 @@ struct DispersiveMedium {
     /// n + iκ along the axes at `wavelength_nm` (time dependence exp(−iωt): absorption has Im ε > 0).
     OpticalMedium at(double wavelength_nm) const;
     Eigen::Matrix3cd permittivity(double wavelength_nm) const { return at(wavelength_nm).permittivity(); }
+    /// The largest minus the smallest principal index at `wavelength_nm`.
+    double birefringence(double wavelength_nm) const;
     /// The chirality tensor κ in the lab frame (optics/gyration.hpp) of the gyration turned by the axes; zero when inactive.
     Eigen::Matrix3d chirality(double wavelength_nm) const;
 };
