@@ -68,7 +68,7 @@ void FlatRegionNoise(benchmark::State& state) {
     state.counters["median_noise"] = relative.empty() ? 0.0 : relative[relative.size() / 2] / 0.6745;
 }
 
-BENCHMARK(PapersScene)->Arg(64)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+BENCHMARK(PapersScene)->Arg(32)->Arg(64)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 BENCHMARK(FlatRegionNoise)->Arg(32)->Arg(64)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 
 }  // namespace

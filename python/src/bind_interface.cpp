@@ -52,6 +52,7 @@ InterfaceResult interface(const OpticalMedium& medium1, const OpticalMedium& med
                           const Eigen::Vector3d& normal, const py::object& polarization, const std::optional<std::string>& mode) {
     InterfaceIncidence incidence;
     incidence.direction = direction;
+    incidence.with_mueller = true;
     if (mode) {
         incidence.mode = parse_wave_mode(*mode);
         if (!incidence.mode || *incidence.mode == InterfaceMode::isotropic) {
@@ -99,6 +100,8 @@ void bind_interface(py::module_& module) {
         .def_readonly("n", &InterfaceWave::n, "√(N·N), complex")
         .def_readonly("power", &InterfaceWave::power, "normal Poynting flux relative to the incident one")
         .def_readonly("stokes", &InterfaceWave::stokes, "(S0, S1, S2, S3) in the wave's (s, p) basis, S0 = power")
+        .def_readonly("mueller", &InterfaceWave::mueller,
+                      "isotropic medium 1 (from interface()): the 4 × 4 Mueller matrix from the incident Stokes vector (S0 = 1) to `stokes`; else None")
         .def_property_readonly("jones", [](const InterfaceWave& w) { return w.jones ? std::optional<Eigen::Vector2cd>(*w.jones) : std::nullopt; },
                                "(E_s, E_p) for a unit incident Jones vector (isotropic waves, polarized incidence)")
         .def_readonly("amplitude", &InterfaceWave::amplitude, "an anisotropic mode's complex amplitude (polarized incidence)")

@@ -63,6 +63,23 @@ def test_calcite_splits_normal_light_into_ordinary_and_extraordinary():
     assert transmitted["extraordinary"].ray_direction[0] != pytest.approx(0.0, abs=1e-3)
 
 
+def test_a_waves_mueller_matrix_gives_its_stokes_vector_for_any_incident_polarization():
+    # Calcite tilted so that its modes take mixed polarizations: one solve's Mueller matrix against solves
+    # with each polarization.
+    calcite = petroscope.Medium.of_mineral("calcite", 589.3, euler_zyz_deg=(30, 50, 10))
+    air = petroscope.Medium(1.0)
+    direction = (0.3, -0.4, math.sqrt(1 - 0.25))
+    muellers = [w.mueller for w in petroscope.interface(air, calcite, direction=direction).waves]
+    assert all(m is not None and m.shape == (4, 4) for m in muellers)
+    for stokes in ([1, 0, 0, 0], [1, 1, 0, 0], [1, 0, 0.6, 0.8], [1, -0.3, 0.4, -0.5]):
+        waves = petroscope.interface(air, calcite, direction=direction, polarization=stokes).waves
+        for wave, mueller in zip(waves, muellers):
+            np.testing.assert_allclose(mueller @ np.array(stokes, dtype=float), wave.stokes, atol=1e-13)
+    # From inside a crystal the incident wave is one mode: no Mueller matrix.
+    inside = petroscope.interface(calcite, air, direction=(0, 0, 1), mode="ordinary")
+    assert all(w.mueller is None for w in inside.waves)
+
+
 def test_bad_interface_input():
     air, glass = petroscope.Medium(1.0), petroscope.Medium(1.5)
     with pytest.raises(ValueError, match="toward medium 2|direction"):

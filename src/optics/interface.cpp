@@ -12,6 +12,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
+#include <span>
+#include <tuple>
 
 namespace petroscope {
 namespace {
@@ -23,7 +26,9 @@ using detail::ExtendedVector3;
 using detail::LocalMode;
 using detail::LocalModes;
 using ExtendedVector4 = Eigen::Matrix<ExtendedComplex, 4, 1>;
-using ExtendedMatrix = Eigen::Matrix<ExtendedComplex, Eigen::Dynamic, Eigen::Dynamic>;
+// At most 4 × 4 (the boundary system), so on the stack.
+using ExtendedMatrix = Eigen::Matrix<ExtendedComplex, Eigen::Dynamic, Eigen::Dynamic, 0, 4, 4>;
+using ExtendedJones = Eigen::Matrix<ExtendedComplex, Eigen::Dynamic, 1, 0, 2, 1>;
 
 complex rounded(ExtendedComplex z) { return {static_cast<double>(z.real()), static_cast<double>(z.imag())}; }
 
@@ -64,7 +69,7 @@ InterfaceMode anisotropic_mode(const OpticalMedium& medium, const LocalModes& mo
     const complex n_o_double = medium.principal_n[0] == medium.principal_n[1] ? medium.principal_n[0] : medium.principal_n[2];
     const ExtendedComplex n_o(n_o_double.real(), n_o_double.imag());
     const auto& pair = forward ? modes.forward : modes.backward;
-    const auto distance = [&](const LocalMode& mode) { return std::abs(mode_index(xi, mode) - n_o); };
+    const auto distance = [&](const LocalMode& mode) { return detail::magnitude_squared(mode_index(xi, mode) - n_o); };
     const bool first_is_ordinary = distance(pair[0]) <= distance(pair[1]);
     return (sheet == 0) == first_is_ordinary ? InterfaceMode::ordinary : InterfaceMode::extraordinary;
 }
@@ -90,22 +95,120 @@ void orthogonalize_fluxes(const std::vector<LocalMode*>& modes) {
         for (std::size_t j = 0; j < i; ++j) {
             const LocalMode& u = *modes[j];
             if (u.evanescent) continue;
-            const Extended self = flux_form(u, u).real();
+            const Extended self = 2.0L * u.flux_z;  // flux_form(u, u), u's flux already restored
             const ExtendedComplex beta = std::conj(flux_form(u, *modes[i])) / self;
             modes[i]->e_field -= beta * u.e_field;
             modes[i]->h_field -= beta * u.h_field;
         }
-        modes[i]->flux_z = detail::poynting(modes[i]->e_field, modes[i]->h_field).z();
+        modes[i]->flux_z = detail::poynting_z(modes[i]->e_field, modes[i]->h_field);
     }
 }
 
 // One outgoing wave: a group of modes (one anisotropic mode, or the s and p modes of an isotropic medium).
 struct Group {
-    std::vector<const LocalMode*> modes;
-    std::vector<int> unknowns;  // their columns in the boundary system
+    std::array<const LocalMode*, 2> modes{};
+    std::array<int, 2> unknowns{};  // their columns in the boundary system
+    std::size_t size = 1;           // 2 for the s and p modes of an isotropic medium
     InterfaceMode mode;
     InterfaceWave::Kind kind;
 };
+
+// x with A x = B by Gaussian elimination with complete pivoting (Golub & Van Loan, Matrix Computations,
+// 4th ed., §3.4.8), pivots chosen by |z|² and inverted as z̄/|z|² (no hypotl, no complex division). An
+// unknown whose pivot is below 4ε of the largest (a rank-deficient system) is set to zero, as Eigen's
+// FullPivLU does.
+ExtendedMatrix solve_full_pivoting(Eigen::Matrix<ExtendedComplex, 4, 4> a, const ExtendedMatrix& right_hand_sides) {
+    const Eigen::Index columns = right_hand_sides.cols();
+    Eigen::Matrix<ExtendedComplex, 4, 2> b = Eigen::Matrix<ExtendedComplex, 4, 2>::Zero();
+    b.leftCols(columns) = right_hand_sides;
+    std::array<int, 4> unknown_of_column{0, 1, 2, 3};
+    Extended largest_pivot = 0.0L;
+    int rank = 4;
+    for (int k = 0; k < 4 && rank == 4; ++k) {
+        int pivot_row = k, pivot_column = k;
+        Extended best = -1.0L;
+        for (int j = k; j < 4; ++j) {
+            for (int i = k; i < 4; ++i) {
+                const Extended size = detail::magnitude_squared(a(i, j));
+                if (size > best) std::tie(best, pivot_row, pivot_column) = std::tuple(size, i, j);
+            }
+        }
+        largest_pivot = std::max(largest_pivot, best);
+        const Extended threshold = 4.0L * std::numeric_limits<Extended>::epsilon();
+        if (!(best > threshold * threshold * largest_pivot)) {
+            rank = k;
+            break;
+        }
+        a.row(k).swap(a.row(pivot_row));
+        b.row(k).swap(b.row(pivot_row));
+        a.col(k).swap(a.col(pivot_column));
+        std::swap(unknown_of_column[static_cast<std::size_t>(k)], unknown_of_column[static_cast<std::size_t>(pivot_column)]);
+        const ExtendedComplex inverse = std::conj(a(k, k)) / best;
+        for (int i = k + 1; i < 4; ++i) {
+            const ExtendedComplex factor = a(i, k) * inverse;
+            for (int j = k + 1; j < 4; ++j) a(i, j) -= factor * a(k, j);
+            for (int c = 0; c < 2; ++c) b(i, c) -= factor * b(k, c);
+        }
+        a(k, k) = inverse;  // kept for the back substitution
+    }
+    Eigen::Matrix<ExtendedComplex, 4, 2> permuted = Eigen::Matrix<ExtendedComplex, 4, 2>::Zero();
+    for (int i = rank - 1; i >= 0; --i) {
+        for (int c = 0; c < 2; ++c) {
+            ExtendedComplex value = b(i, c);
+            for (int j = i + 1; j < rank; ++j) value -= a(i, j) * permuted(j, c);
+            permuted(i, c) = value * a(i, i);
+        }
+    }
+    ExtendedMatrix x(4, columns);
+    for (int k = 0; k < 4; ++k) x.row(unknown_of_column[static_cast<std::size_t>(k)]) = permuted.row(k).leftCols(columns);
+    return x;
+}
+
+// One outgoing wave's share of the boundary solution: per mode of its group the amplitudes for each
+// input basis state (1 × inputs) and the mode's flux, and the wave's transverse field in its own (s, p)
+// basis per input state (2 × inputs).
+struct WaveAmplitudes {
+    int mode_count = 0;
+    std::array<ExtendedMatrix, 2> modes;
+    std::array<Extended, 2> fluxes{};
+    ExtendedMatrix basis_jones;
+    bool carries_power = true;  // false for the evanescent waves of lossless media
+};
+
+struct WaveStokes {
+    double power = 0.0;
+    Eigen::Vector4d stokes = Eigen::Vector4d::Zero();
+};
+
+// The wave's power relative to the incident flux and its Stokes vector (S0 = power) for the incident
+// state `coherency` (in the input basis) of flux `incident_flux`.
+WaveStokes wave_stokes(const WaveAmplitudes& wave, const ExtendedMatrix& coherency, Extended incident_flux) {
+    Extended flux = 0.0L;
+    for (std::size_t m = 0; m < static_cast<std::size_t>(wave.mode_count); ++m) flux += (wave.modes[m] * coherency * wave.modes[m].adjoint())(0, 0).real() * wave.fluxes[m];
+    WaveStokes result;
+    result.power = wave.carries_power ? static_cast<double>(std::abs(flux) / incident_flux) : 0.0;
+    const ExtendedMatrix out = wave.basis_jones * coherency * wave.basis_jones.adjoint();
+    CoherencyMatrix out_double;
+    for (int i = 0; i < 2; ++i) for (int j = 0; j < 2; ++j) out_double(i, j) = rounded(out(i, j));
+    const Eigen::Vector4d stokes = stokes_from_coherency(out_double);
+    if (stokes[0] > 0.0) result.stokes = stokes * (result.power / stokes[0]);
+    return result;
+}
+
+// The Mueller matrix of a wave for an isotropic medium 1 (inputs: its s and p modes, of equal flux):
+// its Stokes vectors for unpolarized, s, +45° and right circular light, by differences (the map is linear).
+Eigen::Matrix4d wave_mueller(const WaveAmplitudes& wave, const std::vector<LocalMode*>& inputs) {
+    const std::array<Eigen::Vector4d, 4> states{Eigen::Vector4d(1, 0, 0, 0), Eigen::Vector4d(1, 1, 0, 0), Eigen::Vector4d(1, 0, 1, 0),
+                                                Eigen::Vector4d(1, 0, 0, 1)};
+    Eigen::Matrix4d mueller;
+    for (int k = 0; k < 4; ++k) {
+        const ExtendedMatrix coherency = coherency_from_stokes(states[static_cast<std::size_t>(k)]).cast<ExtendedComplex>();
+        const Extended incident_flux = coherency(0, 0).real() * inputs[0]->flux_z + coherency(1, 1).real() * inputs[1]->flux_z;
+        const Eigen::Vector4d stokes = wave_stokes(wave, coherency, incident_flux).stokes;
+        mueller.col(k) = k == 0 ? stokes : Eigen::Vector4d(stokes - mueller.col(0));
+    }
+    return mueller;
+}
 
 InputError bad(const std::string& what) { return InputError(what); }
 
@@ -190,7 +293,7 @@ InterfaceResult solve_interface(const Eigen::Vector3d& normal_in, const Interfac
         // The propagating forward mode with the incident wave's index (an evanescent sibling may sort first).
         const ExtendedComplex incident_n(result.incident_n.real(), result.incident_n.imag());
         const auto mismatch = [&](const LocalMode& mode) {
-            return mode.evanescent ? Extended(1e300) : std::abs(mode_index(xi, mode) - incident_n);
+            return mode.evanescent ? Extended(1e300) : detail::magnitude_squared(mode_index(xi, mode) - incident_n);
         };
         inputs.push_back(mismatch(modes1.forward[0]) <= mismatch(modes1.forward[1]) ? &modes1.forward[0] : &modes1.forward[1]);
     }
@@ -215,33 +318,34 @@ InterfaceResult solve_interface(const Eigen::Vector3d& normal_in, const Interfac
     Eigen::Matrix<ExtendedComplex, 4, 4> system;
     system << tangential(modes1.backward[0]), tangential(modes1.backward[1]), -tangential(modes2.forward[0]),
         -tangential(modes2.forward[1]);
-    const Eigen::FullPivLU<Eigen::Matrix<ExtendedComplex, 4, 4>> lu(system);
     const int input_count = static_cast<int>(inputs.size());
-    ExtendedMatrix amplitudes(4, input_count);
-    for (int i = 0; i < input_count; ++i) amplitudes.col(i) = lu.solve(ExtendedVector4(-tangential(*inputs[static_cast<std::size_t>(i)])));
+    ExtendedMatrix right_hand_sides(4, input_count);
+    for (int i = 0; i < input_count; ++i) right_hand_sides.col(i) = -tangential(*inputs[static_cast<std::size_t>(i)]);
+    const ExtendedMatrix amplitudes = solve_full_pivoting(system, right_hand_sides);
 
     // The incident state in the input basis, and its flux (the s and p modes carry no cross flux).
     ExtendedMatrix coherency = ExtendedMatrix::Ones(1, 1);
-    std::optional<Eigen::Matrix<ExtendedComplex, Eigen::Dynamic, 1>> jones;
+    std::optional<ExtendedJones> jones;
     if (incident_sheet < 0) {
         coherency = (incidence.coherency / incidence.coherency.trace().real()).cast<ExtendedComplex>();
         if (incidence.jones) jones = (*incidence.jones / incidence.jones->norm()).cast<ExtendedComplex>();
     } else {
-        jones = Eigen::Matrix<ExtendedComplex, Eigen::Dynamic, 1>::Ones(1);
+        jones = ExtendedJones::Ones(1);
     }
     Extended incident_flux = 0.0L;
     for (int i = 0; i < input_count; ++i) incident_flux += coherency(i, i).real() * inputs[static_cast<std::size_t>(i)]->flux_z;
 
-    std::vector<Group> groups;
+    std::array<Group, 4> groups;
+    std::size_t group_count = 0;
     const auto add_groups = [&](const OpticalMedium& medium, const OpticalMedium& local, const LocalModes& modes, bool reflected) {
         const auto& pair = reflected ? modes.backward : modes.forward;
         const int base = reflected ? 0 : 2;
         const auto kind = reflected ? InterfaceWave::Kind::reflected : InterfaceWave::Kind::transmitted;
         if (medium.is_isotropic()) {
-            groups.push_back({{&pair[0], &pair[1]}, {base, base + 1}, InterfaceMode::isotropic, kind});
+            groups[group_count++] = {{&pair[0], &pair[1]}, {base, base + 1}, 2, InterfaceMode::isotropic, kind};
         } else {
             for (int sheet = 0; sheet < 2; ++sheet) {
-                groups.push_back({{&pair[static_cast<std::size_t>(sheet)]}, {base + sheet}, anisotropic_mode(local, modes, xi, sheet, !reflected), kind});
+                groups[group_count++] = {{&pair[static_cast<std::size_t>(sheet)], nullptr}, {base + sheet, 0}, 1, anisotropic_mode(local, modes, xi, sheet, !reflected), kind};
             }
         }
     };
@@ -249,55 +353,57 @@ InterfaceResult solve_interface(const Eigen::Vector3d& normal_in, const Interfac
     add_groups(medium2, local2, modes2, false);
 
     const bool lossless = medium1.is_lossless() && medium2.is_lossless();
-    for (const Group& group : groups) {
+    result.waves.reserve(group_count);
+    for (const Group& group : std::span(groups.data(), group_count)) {
         InterfaceWave wave;
         wave.kind = group.kind;
         wave.mode = group.mode;
-        const LocalMode& lead = *group.modes.front();
+        const LocalMode& lead = *group.modes[0];
         wave.n = rounded(mode_index(xi, lead));
         const Eigen::Matrix<Extended, 3, 1> direction(xi, 0.0L, lead.q.real());
         const Eigen::Vector3d local_direction = direction.cast<double>().normalized();
         wave.direction = to_lab * local_direction;
         wave.evanescent = lead.evanescent;
-        // Field of the wave per input state: E = Σ aₘ eₘ (3 × inputs), and its flux.
+        // Field of the wave per input state: E = Σ aₘ eₘ (3 × inputs), its modes' amplitudes and fluxes.
         ExtendedMatrix field = ExtendedMatrix::Zero(3, input_count);
-        Extended flux = 0.0L;
+        WaveAmplitudes wave_amplitudes;
+        wave_amplitudes.carries_power = !(wave.evanescent && lossless);
         Eigen::Matrix<Extended, 3, 1> ray = Eigen::Matrix<Extended, 3, 1>::Zero();
-        for (std::size_t m = 0; m < group.modes.size(); ++m) {
+        for (std::size_t m = 0; m < group.size; ++m) {
             const ExtendedMatrix a = amplitudes.row(group.unknowns[m]);
             field += group.modes[m]->e_field * a;
-            const Extended weight = (a * coherency * a.adjoint())(0, 0).real();
-            flux += weight * group.modes[m]->flux_z;
+            wave_amplitudes.modes[m] = a;
+            wave_amplitudes.fluxes[m] = group.modes[m]->flux_z;
+            ++wave_amplitudes.mode_count;
             // A mode's ray is its own whatever its amplitude (zero-power waves included); an isotropic
             // wave's s and p rays coincide.
             ray += detail::poynting(group.modes[m]->e_field, group.modes[m]->h_field) * (std::abs(group.modes[m]->flux_z) > 0.0L ? Extended(1) / std::abs(group.modes[m]->flux_z) : Extended(1));
         }
-        wave.power = wave.evanescent && lossless ? 0.0 : static_cast<double>(std::abs(flux) / incident_flux);
         wave.ray_direction = ray.norm() > 0.0L ? lab_vector(ray) : wave.direction;
         // The wave's own (s, p) basis: ŝ = normal × k̂ (ŷ when k̂ ∥ normal), p̂ = ŝ × k̂.
         Eigen::Vector3d s_hat = Eigen::Vector3d::UnitZ().cross(local_direction);
         s_hat = s_hat.norm() > 1e-15 ? Eigen::Vector3d(s_hat.normalized()) : Eigen::Vector3d::UnitY();
         const Eigen::Vector3d p_hat = s_hat.cross(local_direction);
-        ExtendedMatrix basis_jones(2, input_count);
+        ExtendedMatrix& basis_jones = wave_amplitudes.basis_jones;
+        basis_jones.resize(2, input_count);
         basis_jones.row(0) = s_hat.cast<Extended>().cast<ExtendedComplex>().transpose() * field;
         basis_jones.row(1) = p_hat.cast<Extended>().cast<ExtendedComplex>().transpose() * field;
-        const ExtendedMatrix out = basis_jones * coherency * basis_jones.adjoint();
-        CoherencyMatrix out_double;
-        for (int i = 0; i < 2; ++i) for (int j = 0; j < 2; ++j) out_double(i, j) = rounded(out(i, j));
-        const Eigen::Vector4d stokes = stokes_from_coherency(out_double);
-        wave.stokes = stokes[0] > 0.0 ? Eigen::Vector4d(stokes * (wave.power / stokes[0])) : Eigen::Vector4d::Zero();
-        if (group.modes.size() == 1) {
+        const WaveStokes out = wave_stokes(wave_amplitudes, coherency, incident_flux);
+        wave.power = out.power;
+        wave.stokes = out.stokes;
+        if (incident_sheet < 0 && incidence.with_mueller) wave.mueller = wave_mueller(wave_amplitudes, inputs);
+        if (group.size == 1) {
             // D = εE; its common phase removed through its largest component.
             const OpticalMedium& local = group.kind == InterfaceWave::Kind::reflected ? local1 : local2;
             const ExtendedVector3 d = local.permittivity().cast<ExtendedComplex>() * lead.e_field;
             Eigen::Index largest = 0;
-            d.cwiseAbs().maxCoeff(&largest);
-            const ExtendedVector3 phased = d * (std::conj(d[largest]) / std::abs(d[largest]));
+            d.cwiseAbs2().maxCoeff(&largest);
+            const ExtendedVector3 phased = d * std::conj(d[largest]);  // its length does not matter
             wave.d_direction = to_lab * phased.real().cast<double>().normalized();
         }
         if (jones) {
-            if (group.modes.size() == 2) {
-                const Eigen::Matrix<ExtendedComplex, Eigen::Dynamic, 1> out_jones = basis_jones * *jones;
+            if (group.size == 2) {
+                const ExtendedJones out_jones = basis_jones * *jones;
                 wave.jones = JonesVector(rounded(out_jones[0]), rounded(out_jones[1]));
             } else {
                 wave.amplitude = rounded((amplitudes.row(group.unknowns[0]) * *jones)(0, 0));

@@ -3,7 +3,6 @@
 #include "petroscope/optics/slab.hpp"
 
 #include <Eigen/Eigenvalues>
-#include <Eigen/LU>
 #include <Eigen/SVD>
 
 #include <algorithm>
@@ -54,7 +53,7 @@ Polynomial linear(extended a, extended b) { return Polynomial{{a, b, 0.0L, 0.0L,
 Polynomial quadratic(extended a, extended c2) { return Polynomial{{a, 0.0L, c2, 0.0L, 0.0L}}; }  // a + c₂q²
 
 // The wave equation N × (N × E) + εE = 0 as M(q)E = 0 with N = (ξ, 0, q):
-// M = ε + NNᵀ − |N|²I (Born & Wolf §15.2; physics notes §3).
+// M = ε + NNᵀ − |N|²I (Born & Wolf §15.2; docs/theory.md §1).
 Matrix3x wave_matrix(const Matrix3x& epsilon, Extended xi, ExtendedComplex q) {
     Matrix3x m = epsilon;
     m(0, 0) -= q * q;
@@ -72,15 +71,15 @@ LocalMode make_mode(ExtendedComplex q, Extended xi, const ExtendedVector3& e_fie
     mode.e_field = e_field;
     const ExtendedVector3 n_vector(xi, 0.0L, q);
     mode.h_field = bilinear_cross(n_vector, e_field);
-    mode.flux_z = poynting(e_field, mode.h_field).z();
+    mode.flux_z = poynting_z(e_field, mode.h_field);
     return mode;
 }
 
 // The same with E scaled to unit length and its largest component real and positive.
 LocalMode complete(ExtendedComplex q, Extended xi, ExtendedVector3 e_field) {
     Eigen::Index largest = 0;
-    e_field.cwiseAbs().maxCoeff(&largest);
-    e_field *= std::conj(e_field[largest]) / std::abs(e_field[largest]) / e_field.norm();
+    e_field.cwiseAbs2().maxCoeff(&largest);
+    e_field *= std::conj(e_field[largest]) / (std::sqrt(magnitude_squared(e_field[largest])) * e_field.norm());
     return make_mode(q, xi, e_field);
 }
 
@@ -121,17 +120,50 @@ bool propagating_anisotropic_modes(const OpticalMedium& medium, double xi, Local
     return true;
 }
 
+// det A by Gaussian elimination with complete pivoting (Golub & Van Loan, Matrix Computations, 4th ed.,
+// §3.4.8; backward stable), pivots chosen by |z|² (no hypotl).
+ExtendedComplex determinant_full_pivoting(Matrix3x a) {
+    ExtendedComplex determinant = 1.0L;
+    for (int k = 0; k < 3; ++k) {
+        int pivot_row = k, pivot_column = k;
+        Extended best = -1.0L;
+        for (int j = k; j < 3; ++j) {
+            for (int i = k; i < 3; ++i) {
+                if (magnitude_squared(a(i, j)) > best) {
+                    best = magnitude_squared(a(i, j));
+                    pivot_row = i;
+                    pivot_column = j;
+                }
+            }
+        }
+        if (!(best > 0.0L)) return 0.0L;
+        if (pivot_row != k) {
+            a.row(k).swap(a.row(pivot_row));
+            determinant = -determinant;
+        }
+        if (pivot_column != k) {
+            a.col(k).swap(a.col(pivot_column));
+            determinant = -determinant;
+        }
+        determinant *= a(k, k);
+        const ExtendedComplex inverse = std::conj(a(k, k)) / best;
+        for (int i = k + 1; i < 3; ++i) {
+            const ExtendedComplex factor = a(i, k) * inverse;
+            for (int j = k + 1; j < 3; ++j) a(i, j) -= factor * a(k, j);
+        }
+    }
+    return determinant;
+}
+
 // General medium: roots of det M(q), a quartic.
-LocalModes general_modes(const OpticalMedium& medium, double xi_double) {
-    const Matrix3x epsilon = medium.permittivity().cast<ExtendedComplex>();
-    const Extended xi = xi_double;
+// The roots of det M(q) = 0, a quartic, for any medium: the eigenvalues of its companion matrix (double is
+// enough for starting values), polished by Newton in long double.
+std::array<ExtendedComplex, 4> quartic_roots(const Matrix3x& epsilon, Extended xi) {
     const auto x = [&](int i, int j) { return epsilon(i, j); };
     const Polynomial m00 = quadratic(x(0, 0), -1.0L), m01 = constant(x(0, 1)), m02 = linear(x(0, 2), xi);
     const Polynomial m10 = constant(x(1, 0)), m11 = quadratic(x(1, 1) - xi * xi, -1.0L), m12 = constant(x(1, 2));
     const Polynomial m20 = linear(x(2, 0), xi), m21 = constant(x(2, 1)), m22 = constant(x(2, 2) - xi * xi);
     const Polynomial determinant = m00 * (m11 * m22 - m12 * m21) - m01 * (m10 * m22 - m12 * m20) + m02 * (m10 * m21 - m11 * m20);
-    // Companion matrix of the monic quartic (double is enough for starting values); its eigenvalues are
-    // the roots, then polished by Newton in long double.
     Eigen::Matrix4cd companion = Eigen::Matrix4cd::Zero();
     for (int i = 0; i < 3; ++i) companion(i + 1, i) = 1.0;
     for (int i = 0; i < 4; ++i) {
@@ -153,21 +185,43 @@ LocalModes general_modes(const OpticalMedium& medium, double xi_double) {
         for (int step = 0; step < 3; ++step) {
             extended slope;
             determinant(q, &slope);
-            const extended value = Eigen::FullPivLU<Matrix3x>(wave_matrix(epsilon, xi, q)).determinant();
+            const extended value = determinant_full_pivoting(wave_matrix(epsilon, xi, q));
             if (std::abs(slope) == 0.0L) break;
             q -= value / slope;
         }
         roots[static_cast<std::size_t>(i)] = q;
     }
-    // Null vectors; a double root (degenerate modes) takes the two smallest singular vectors.
+    return roots;
+}
+
+// General medium: the roots of the quartic, their null vectors, forward and backward.
+LocalModes general_modes(const OpticalMedium& medium, double xi_double) {
+    const Matrix3x epsilon = medium.permittivity().cast<ExtendedComplex>();
+    const Extended xi = xi_double;
+    const std::array<ExtendedComplex, 4> roots = quartic_roots(epsilon, xi);
+    // Null vectors: of a simple root, M(q) has rank 2 and its null vector is the (unconjugated) cross
+    // product of two of its rows, the largest of the three; a double root (degenerate modes) takes the two
+    // smallest singular vectors.
     std::array<LocalMode, 4> all;
     for (std::size_t i = 0; i < 4; ++i) {
-        Eigen::JacobiSVD<Matrix3x> svd(wave_matrix(epsilon, xi, roots[i]), Eigen::ComputeFullV);
-        int column = 2;
-        for (std::size_t j = 0; j < i; ++j) {
-            if (std::abs(roots[i] - roots[j]) <= 1e-10L * std::abs(roots[i])) column = 1;
+        const Matrix3x m = wave_matrix(epsilon, xi, roots[i]);
+        bool double_root = false;
+        for (std::size_t j = 0; j < 4; ++j) {
+            double_root = double_root || (j != i && magnitude_squared(roots[i] - roots[j]) <= 1e-20L * magnitude_squared(roots[i]));
         }
-        all[i] = complete(roots[i], xi, svd.matrixV().col(column));
+        if (double_root) {
+            const Eigen::JacobiSVD<Matrix3x> svd(m, Eigen::ComputeFullV);
+            bool second = false;
+            for (std::size_t j = 0; j < i; ++j) second = second || magnitude_squared(roots[i] - roots[j]) <= 1e-20L * magnitude_squared(roots[i]);
+            all[i] = complete(roots[i], xi, svd.matrixV().col(second ? 1 : 2));
+            continue;
+        }
+        ExtendedVector3 null_vector = bilinear_cross(m.row(0).transpose(), m.row(1).transpose());
+        for (const auto& [a, b] : {std::pair{1, 2}, std::pair{2, 0}}) {
+            const ExtendedVector3 candidate = bilinear_cross(m.row(a).transpose(), m.row(b).transpose());
+            if (candidate.squaredNorm() > null_vector.squaredNorm()) null_vector = candidate;
+        }
+        all[i] = complete(roots[i], xi, null_vector);
     }
     // Forward: energy toward +z for propagating modes of a lossless medium, otherwise decay toward +z.
     const bool lossless = medium.is_lossless();

@@ -17,6 +17,10 @@ using Extended = long double;
 using ExtendedComplex = std::complex<Extended>;
 using ExtendedVector3 = Eigen::Matrix<ExtendedComplex, 3, 1>;
 
+/// |z|² as re² + im². libstdc++'s std::norm and std::abs of a long-double complex number go through hypotl
+/// (x87, about a hundred cycles); pivots, largest components and distances only need |z|².
+inline Extended magnitude_squared(const ExtendedComplex& z) { return z.real() * z.real() + z.imag() * z.imag(); }
+
 /// a × b without conjugation. Eigen's cross() conjugates its result for complex vectors (so that it is
 /// orthogonal under the Hermitian product), which is not the vector identity H = N × E needs.
 inline ExtendedVector3 bilinear_cross(const ExtendedVector3& a, const ExtendedVector3& b) {
@@ -26,6 +30,12 @@ inline ExtendedVector3 bilinear_cross(const ExtendedVector3& a, const ExtendedVe
 /// ½ Re(E × H*): the time-averaged Poynting vector.
 inline Eigen::Matrix<Extended, 3, 1> poynting(const ExtendedVector3& e_field, const ExtendedVector3& h_field) {
     return Extended(0.5) * bilinear_cross(e_field, h_field.conjugate()).real();
+}
+
+/// ½ Re(E × H*)_z: the z component alone.
+inline Extended poynting_z(const ExtendedVector3& e_field, const ExtendedVector3& h_field) {
+    const auto re_product = [](const ExtendedComplex& a, const ExtendedComplex& b) { return a.real() * b.real() + a.imag() * b.imag(); };  // Re(a b*)
+    return Extended(0.5) * (re_product(e_field.x(), h_field.y()) - re_product(e_field.y(), h_field.x()));
 }
 
 struct LocalMode {

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
+#include <utility>
 
 namespace petroscope {
 namespace {
@@ -108,20 +110,22 @@ double solve_bracketed(const SheetEquation<double>& equation, double end_a, doub
 }
 
 // Uniaxial crystal (b₂ = ±b₁ = ±b): |N × b₁||N × b₂| = |N|² − (N·b)², so g_σ is the quadratic
-// αq² + βq + γ; its larger root is the forward mode (the caller has checked that g(0) < 0, so the roots
-// are real and of opposite signs).
-double forward_quadratic_root(const SheetEquation<double>& e, double orientation_sign) {
-    const double level = e.a_half_sum + e.sigma * e.b_half_difference;
-    const double cross = e.b_half_difference * (orientation_sign - e.sigma);
-    const double alpha = level + cross * e.b1z * e.b1z;
-    const double beta = 2.0 * cross * e.u1 * e.b1z;
-    const double gamma = level * e.xi2 + cross * e.u1 * e.u1 - 1.0;
-    const double discriminant = std::max(beta * beta - 4.0 * alpha * gamma, 0.0);
-    // Numerically stable form (Press et al., Numerical Recipes, §5.6).
-    const double t = -0.5 * (beta + std::copysign(std::sqrt(discriminant), beta));
-    const double r1 = t / alpha;
-    const double r2 = t != 0.0 ? gamma / t : -r1;
-    return std::max(r1, r2);
+// αq² + βq + γ (α > 0: the sheet is an ellipsoid). Its real roots, lower then upper, by the numerically
+// stable form (Press et al., Numerical Recipes, §5.6); nothing when the line misses the sheet
+// (evanescent modes). `orientation_sign` is b₁·b₂.
+template <typename Real>
+std::optional<std::pair<Real, Real>> quadratic_roots(const SheetEquation<Real>& e, Real orientation_sign) {
+    const Real level = e.a_half_sum + e.sigma * e.b_half_difference;
+    const Real cross = e.b_half_difference * (orientation_sign - e.sigma);
+    const Real alpha = level + cross * e.b1z * e.b1z;
+    const Real beta = Real(2) * cross * e.u1 * e.b1z;
+    const Real gamma = level * e.xi2 + cross * e.u1 * e.u1 - Real(1);
+    const Real discriminant = beta * beta - Real(4) * alpha * gamma;
+    if (!(discriminant >= Real(0))) return std::nullopt;
+    const Real t = Real(-0.5) * (beta + std::copysign(std::sqrt(discriminant), beta));
+    const Real r1 = t / alpha;
+    const Real r2 = t != Real(0) ? gamma / t : -r1;
+    return std::minmax(r1, r2);
 }
 
 // Relative splitting of the two sheets' roots below which their vibration directions are taken at one
@@ -195,7 +199,8 @@ bool solve_forward_modes(const BinormalFrame& frame, const Eigen::Vector2d& xi, 
         // |ξ| reaches the sheet's index: no propagating mode on this sheet.
         if (equation.value(0.0, &derivative) >= 0.0) return false;
         q[static_cast<std::size_t>(sheet)] =
-            polish(equation, frame.uniaxial() ? forward_quadratic_root(equation, frame.binormal_1.dot(frame.binormal_2))
+            // g(0) < 0 and α > 0: the quadratic's roots are real and of opposite signs, the upper one forward.
+            polish(equation, frame.uniaxial() ? quadratic_roots(equation, frame.binormal_1.dot(frame.binormal_2))->second
                                               : solve_bracketed(equation, 0.0, 2.0 * n_max, guess[sheet]));  // g(2 n_max) > 0
     }
     const auto fields = mode_fields(frame, xi, q[0], q[1]);
@@ -209,6 +214,14 @@ bool solve_sheet_modes_extended(const BasicBinormalFrame<long double>& frame, co
     std::array<long double, 4> roots{};
     for (int sheet = 0; sheet < 2; ++sheet) {
         const SheetEquation<long double> equation = sheet_equation(frame, xi, sheet);
+        if (frame.uniaxial()) {
+            // Closed form; then Newton in long double, as for the other roots.
+            const auto both = quadratic_roots(equation, frame.binormal_1.dot(frame.binormal_2));
+            if (!both) return false;  // the line misses the sheet: evanescent modes
+            roots[static_cast<std::size_t>(2 * sheet)] = polished(equation, both->second);
+            roots[static_cast<std::size_t>(2 * sheet + 1)] = polished(equation, both->first);
+            continue;
+        }
         const SheetEquation<double> rounded = equation.as<double>();
         const auto g = [&](long double q) {
             long double unused = 0.0L;

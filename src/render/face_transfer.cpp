@@ -1,59 +1,19 @@
 #include "face_transfer.hpp"
 
-#include "petroscope/optics/polarization.hpp"
-
 #include <Eigen/Geometry>
 
-#include <array>
 #include <cmath>
 
 namespace petroscope::detail {
 namespace {
-
-// The reverse of a traced wave must come out of the forward solution to within rounding (the solver
-// works in extended precision).
-constexpr double kSameDirection = 1.0 - 1e-7;
-
-const InterfaceWave* find_wave(const InterfaceResult& result, InterfaceWave::Kind kind, const Eigen::Vector3d& direction) {
-    const InterfaceWave* best = nullptr;
-    double best_dot = kSameDirection;
-    for (const InterfaceWave& wave : result.waves) {
-        if (wave.kind != kind || wave.evanescent) continue;
-        const double dot = wave.direction.dot(direction);
-        if (dot > best_dot) {
-            best_dot = dot;
-            best = &wave;
-        }
-    }
-    return best;
-}
-
-// Unpolarized, s, +45°, right circular: the Stokes basis states whose results give a linear map by
-// differences (each has S0 = 1).
-const std::array<Eigen::Vector4d, 4>& basis_states() {
-    static const std::array<Eigen::Vector4d, 4> states{Eigen::Vector4d(1, 0, 0, 0), Eigen::Vector4d(1, 1, 0, 0), Eigen::Vector4d(1, 0, 1, 0),
-                                                       Eigen::Vector4d(1, 0, 0, 1)};
-    return states;
-}
-
-std::array<InterfaceResult, 4> solve_basis_states(const Eigen::Vector3d& normal, const Eigen::Vector3d& direction, const OpticalMedium& medium1,
-                                                  const OpticalMedium& medium2) {
-    std::array<InterfaceResult, 4> results;
-    for (std::size_t k = 0; k < 4; ++k) {
-        InterfaceIncidence incidence;
-        incidence.direction = direction;
-        incidence.coherency = coherency_from_stokes(basis_states()[k]);
-        results[k] = solve_interface(normal, incidence, medium1, medium2);
-    }
-    return results;
-}
 
 std::vector<Branch> branches(const InterfaceResult& result, bool crystal_reflects) {
     std::vector<Branch> out;
     for (const InterfaceWave& wave : result.waves) {
         if (wave.evanescent || !(wave.power > 0.0)) continue;
         const bool in_crystal = (wave.kind == InterfaceWave::Kind::reflected) == crystal_reflects;
-        out.push_back({in_crystal, wave.mode, wave.direction, wave.ray_direction, wave.power, wave.stokes});
+        out.push_back({in_crystal, wave.mode, wave.direction, wave.ray_direction, wave.power, wave.stokes,
+                       wave.mueller.value_or(Eigen::Matrix4d::Zero())});
     }
     return out;
 }
@@ -84,6 +44,7 @@ std::vector<Branch> branches_from_outside(const Eigen::Vector3d& outward, const 
                                           const OpticalMedium& crystal) {
     InterfaceIncidence incidence;
     incidence.direction = direction;
+    incidence.with_mueller = true;
     return branches(solve_interface(-outward, incidence, outside, crystal), false);
 }
 
@@ -95,30 +56,14 @@ std::vector<Branch> branches_from_inside(const Eigen::Vector3d& outward, const E
     return branches(solve_interface(outward, incidence, crystal, outside), true);
 }
 
-std::optional<Eigen::Matrix4d> reflection_mueller(const Eigen::Vector3d& outward, const Eigen::Vector3d& traced, const Eigen::Vector3d& branch,
-                                                  const OpticalMedium& outside, const OpticalMedium& crystal) {
-    const std::array<InterfaceResult, 4> results = solve_basis_states(-outward, -branch, outside, crystal);
-    std::array<Eigen::Vector4d, 4> out;
-    for (std::size_t k = 0; k < 4; ++k) {
-        const InterfaceWave* wave = find_wave(results[k], InterfaceWave::Kind::reflected, -traced);
-        if (!wave) return std::nullopt;
-        out[k] = wave->stokes;
-    }
-    Eigen::Matrix4d mueller;
-    mueller.col(0) = out[0];
-    for (int k = 1; k < 4; ++k) mueller.col(k) = out[static_cast<std::size_t>(k)] - out[0];
-    return mueller;
+Eigen::Matrix4d reflection_mueller(const Branch& branch) {
+    const Eigen::Vector4d d(1, 1, -1, 1);
+    return d.asDiagonal() * branch.mueller.transpose() * d.asDiagonal();
 }
 
-std::optional<Eigen::Vector4d> refraction_out_stokes(const Eigen::Vector3d& outward, const Eigen::Vector3d& traced, const Eigen::Vector3d& branch,
-                                                     InterfaceMode branch_mode, const OpticalMedium& outside, const OpticalMedium& crystal) {
-    InterfaceIncidence incidence;
-    incidence.direction = -branch;
-    incidence.mode = branch_mode;
-    const InterfaceResult result = solve_interface(outward, incidence, crystal, outside);
-    const InterfaceWave* wave = find_wave(result, InterfaceWave::Kind::transmitted, -traced);
-    if (!wave) return std::nullopt;
-    return wave->stokes;
+Eigen::Vector4d refraction_out_stokes(const Branch& branch) {
+    const Eigen::RowVector4d& q = branch.mueller.row(0);
+    return 2.0 * Eigen::Vector4d(q[0], q[1], -q[2], -q[3]);
 }
 
 Eigen::RowVector4d refraction_in_row(const Branch& branch) {

@@ -2,15 +2,15 @@
 // The light transport across one crystal face for backward tracing, from the exact interface model
 // (optics/interface.hpp). A path traced from the camera meets a face; the light that arrives along it
 // came from the waves the interface solver creates for the reversed problem (reciprocity: the same
-// directions, reversed). For each such branch the forward transfer onto the traced wave is solved
-// exactly: a Mueller matrix (air to air), a Stokes column (crystal mode to air), a Stokes row (air to a
-// crystal mode) or a power (mode to mode). Stokes vectors are in each wave's (s, p) basis
-// (docs/interface.md); s_basis gives that basis for a normal and a wave direction.
+// directions, reversed). For each such branch the forward transfer onto the traced wave follows exactly
+// from the reversed problem's own solution by reciprocity, so one solve serves the face: a Mueller matrix
+// (air to air), a Stokes column (crystal mode to air), a Stokes row (air to a crystal mode) or a power
+// (mode to mode). Stokes vectors are in each wave's (s, p) basis (docs/interface.md); s_basis gives that
+// basis for a normal and a wave direction.
 #include "petroscope/optics/interface.hpp"
 
 #include <Eigen/Core>
 
-#include <optional>
 #include <vector>
 
 namespace petroscope::detail {
@@ -39,6 +39,9 @@ struct Branch {
     Eigen::Vector3d ray;               // unit ray (Poynting) direction of the traced path
     double power = 0.0;                // of the reversed problem, as a selection weight
     Eigen::Vector4d stokes = Eigen::Vector4d::Zero();  // of the reversed problem's wave, its (s, p) basis
+    /// From the surrounding medium: the reversed problem's Mueller matrix onto this wave (stokes = mueller ·
+    /// (1, 0, 0, 0)); zero from inside the crystal.
+    Eigen::Matrix4d mueller = Eigen::Matrix4d::Zero();
 };
 
 /// The traced path arrives in the surrounding medium `outside` along `direction` at a face
@@ -50,19 +53,21 @@ std::vector<Branch> branches_from_outside(const Eigen::Vector3d& outward, const 
 std::vector<Branch> branches_from_inside(const Eigen::Vector3d& outward, const Eigen::Vector3d& wave_normal, InterfaceMode mode,
                                          const OpticalMedium& outside, const OpticalMedium& crystal);
 
-/// Forward transfers onto the traced wave. `traced` is the traced wave's backward direction (its wave
-/// normal); the light of interest travels along −traced. Each returns nullopt when the forward solution
-/// has no wave matching the traced one (a numerical inconsistency).
+/// Forward transfers onto the traced wave, from the reversed problem's branch by reciprocity (lossless,
+/// non-magnetic media with symmetric ε; Born & Wolf §1.5, Potton 2004, Rep. Prog. Phys. 67, 717). The
+/// traced wave's backward direction is `traced`; the light of interest travels along −traced and comes
+/// from −branch.wave_normal. The reversed problem's bases and the forward one's share ŝ and have opposite
+/// p̂, which flips S2 and S3. Each is tested against direct forward solves (test_face_transfer.cpp).
 ///
-/// Outside → outside (reflection off the face): the Mueller matrix from the incident light (travelling
-/// along −branch, basis s_basis(−outward, −branch)) to the reflected light (along −traced, basis
-/// s_basis(−outward, −traced)).
-std::optional<Eigen::Matrix4d> reflection_mueller(const Eigen::Vector3d& outward, const Eigen::Vector3d& traced, const Eigen::Vector3d& branch,
-                                                  const OpticalMedium& outside, const OpticalMedium& crystal);
-/// Crystal mode `branch_mode` (travelling along −branch) → outside light along −traced: its Stokes vector
-/// per unit incident power, basis s_basis(outward, −traced).
-std::optional<Eigen::Vector4d> refraction_out_stokes(const Eigen::Vector3d& outward, const Eigen::Vector3d& traced, const Eigen::Vector3d& branch,
-                                                     InterfaceMode branch_mode, const OpticalMedium& outside, const OpticalMedium& crystal);
+/// Outside → outside (reflection off the face; a branch of branches_from_outside): the Mueller matrix
+/// from the incident light (basis s_basis(−outward, −branch)) to the reflected light (basis
+/// s_basis(−outward, −traced)). The Jones matrix of the reversed path is the transpose of the forward one
+/// (in bases with reversed p̂): M = D M_revᵀ D with D = diag(1, 1, −1, 1).
+Eigen::Matrix4d reflection_mueller(const Branch& branch);
+/// Crystal mode (travelling along −branch) → outside light along −traced (a crystal branch of
+/// branches_from_outside): its Stokes vector per unit incident power, basis s_basis(outward, −traced):
+/// 2(q0, q1, −q2, −q3), q the reversed problem's power row (the branch's Mueller matrix's first row).
+Eigen::Vector4d refraction_out_stokes(const Branch& branch);
 /// Outside light (along −branch, basis s_basis(−outward, −branch)) → crystal mode along −traced, from
 /// the reversed problem's branch of `branches_from_inside` by reciprocity (lossless media; Born & Wolf
 /// §1.5, Potton 2004, Rep. Prog. Phys. 67, 717): the row q with power = q·S is ½(t0, t1, −t2, −t3), t the

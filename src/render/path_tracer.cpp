@@ -248,7 +248,6 @@ private:
             }
             std::vector<Branch> branches;
             Eigen::Vector3d outward;
-            OpticalMedium medium;  // the crystal's, at this path's wavelength
             const bool from_outside = path.crystal < 0;
             int hit_crystal = path.crystal;
             if (from_outside) {
@@ -273,8 +272,7 @@ private:
                 }
                 path.position += nearest * path.d;
                 outward = scene_.crystals[static_cast<std::size_t>(hit_crystal)].shape.face_normals[static_cast<std::size_t>(face)];
-                medium = crystal_medium(hit_crystal, wavelength_nm);
-                branches = detail::branches_from_outside(outward, path.d, air, medium);
+                branches = detail::branches_from_outside(outward, path.d, air, crystal_medium(hit_crystal, wavelength_nm));
             } else {
                 // Inside a crystal: the face the ray leaves through.
                 const ConvexPolyhedron& shape = scene_.crystals[static_cast<std::size_t>(path.crystal)].shape;
@@ -283,8 +281,7 @@ private:
                 path.position += exit->first * path.d;
                 outward = shape.face_normals[static_cast<std::size_t>(exit->second)];
                 if (detail::walks_off(path.wave_normal, outward)) return walked_off(statistics);
-                medium = crystal_medium(path.crystal, wavelength_nm);
-                branches = detail::branches_from_inside(outward, path.wave_normal, path.mode, air, medium);
+                branches = detail::branches_from_inside(outward, path.wave_normal, path.mode, air, crystal_medium(path.crystal, wavelength_nm));
             }
             ++statistics.crystal_interactions;
             if (branches.empty()) return Contribution::Zero();
@@ -292,42 +289,34 @@ private:
                 Contribution sum = Contribution::Zero();
                 for (const Branch& b : branches) {
                     PathState next = path;
-                    if (!take(next, b, 1.0, from_outside, hit_crystal, outward, air, medium)) {
-                        ++statistics.inconsistent;
-                        continue;
-                    }
+                    take(next, b, 1.0, from_outside, hit_crystal, outward);
                     ++next.depth;
                     sum += follow(next, index, sampler, statistics);
                 }
                 return sum;
             }
             const auto [chosen, probability] = choose(branches, sampler.decision(path.decisions++));
-            if (!take(path, branches[chosen], probability, from_outside, hit_crystal, outward, air, medium)) return inconsistent(statistics);
+            take(path, branches[chosen], probability, from_outside, hit_crystal, outward);
         }
     }
 
     /// Moves `path` onto branch `b` (taken with `probability`) at the face with `outward` normal of crystal
-    /// `crystal` (its `medium` at the path's wavelength, in `air`); false when the forward solution has no
-    /// wave matching the traced one.
-    bool take(PathState& path, const Branch& b, double probability, bool from_outside, int crystal, const Eigen::Vector3d& outward,
-              const OpticalMedium& air, const OpticalMedium& medium) const {
+    /// `crystal`. Every forward transfer onto the traced wave comes from the reversed problem's branch by
+    /// reciprocity (face_transfer.hpp): one interface solve per face interaction.
+    void take(PathState& path, const Branch& b, double probability, bool from_outside, int crystal, const Eigen::Vector3d& outward) const {
         if (from_outside) {
             if (!b.in_crystal) {
-                const std::optional<Eigen::Matrix4d> reflection = detail::reflection_mueller(outward, path.d, b.wave_normal, air, medium);
-                if (!reflection) return false;
-                path.mueller = path.mueller * detail::stokes_frame_change(detail::s_basis(-outward, -path.d), path.s_hat, -path.d) * *reflection / probability;
+                path.mueller = path.mueller * detail::stokes_frame_change(detail::s_basis(-outward, -path.d), path.s_hat, -path.d) *
+                               detail::reflection_mueller(b) / probability;
                 path.s_hat = detail::s_basis(-outward, -b.wave_normal);
             } else {
-                const std::optional<Eigen::Vector4d> out = detail::refraction_out_stokes(outward, path.d, b.wave_normal, b.mode, air, medium);
-                if (!out) return false;
-                path.column = path.mueller * detail::stokes_frame_change(detail::s_basis(outward, -path.d), path.s_hat, -path.d) * *out / probability;
+                path.column = path.mueller * detail::stokes_frame_change(detail::s_basis(outward, -path.d), path.s_hat, -path.d) *
+                              detail::refraction_out_stokes(b) / probability;
                 path.crystal = crystal;
                 path.mode = b.mode;
                 path.wave_normal = b.wave_normal;
             }
         } else if (b.in_crystal) {
-            // Reciprocity (face_transfer.hpp): the forward transfers onto the traced mode are the reversed
-            // problem's own, so no second solve is needed inside.
             path.column *= b.power / probability;
             path.mode = b.mode;
             path.wave_normal = b.wave_normal;
@@ -338,7 +327,6 @@ private:
         }
         path.d = b.ray;
         path.power *= b.power / probability;
-        return true;
     }
 
     OpticalMedium crystal_medium(int crystal, double wavelength_nm) const {

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <numeric>
 #include <random>
 
 namespace petroscope {
@@ -156,7 +157,7 @@ VerificationTest brewster() {
                           "one. The paper (§3.2, statement 3) says s-polarized light then has no refracted ray; that is wrong: s light is "
                           "partly reflected, R_s = sin²(θ₁ − θ₂)/sin²(θ₁ + θ₂) (0.1479 for 1 → 1.5), and the rest, T_s = 1 − R_s, is "
                           "refracted. The suite tests the physics.",
-                          "paper §3.2; physics notes §4; Born & Wolf §1.5.3",
+                          "paper §3.2; docs/theory.md §3; Born & Wolf §1.5.3",
                           {}};
     double worst_rp = 0.0, worst_perpendicular = 0.0, worst_rs = 0.0, worst_ts = 0.0;
     for (const auto& [n1, n2] : {std::pair{1.0, 1.5}, std::pair{1.5, 1.0}, std::pair{1.0, 2.4}}) {
@@ -292,8 +293,10 @@ VerificationTest against_berreman(int cases) {
                           {}};
     std::mt19937_64 rng(4242);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
+    // Mode pairs whose q differ by less than this are compared by their total power.
+    constexpr double kNearlyDegenerate = 1e-4;
     double worst = 0.0;
-    int compared = 0;
+    int compared = 0, near_degenerate = 0;
     for (int i = 0; i < cases; ++i) {
         const OpticalMedium medium1 = random_medium(rng, static_cast<int>(rng() % 3));
         const OpticalMedium medium2 = random_medium(rng, static_cast<int>(rng() % 3));
@@ -322,25 +325,32 @@ VerificationTest against_berreman(int cases) {
         }
         const StackResponse stack = solve_stack(medium1.permittivity(), {}, medium2.permittivity(), 589.3, xi, incident_psi);
         // Compare per medium: an isotropic medium's s and p waves are one wave here; otherwise the two modes,
-        // matched by sorting their powers (the solvers order evanescent modes differently).
-        const auto compare = [&](Kind kind, std::array<double, 2> berreman_power, bool isotropic) {
+        // matched by sorting their powers (the solvers order evanescent modes differently). Where the two
+        // modes' q nearly meet (an optic axis), how the power splits between them is ill-conditioned (the
+        // modes' fields move by about the rounding over the separation: Golub & Van Loan §7.2.4), and the
+        // double-precision 4×4 solver's split is good only to ~1e-16/separation: there the pair's total is compared.
+        const auto compare = [&](Kind kind, std::array<double, 2> berreman_power, const std::array<BerremanMode, 2>& modes, bool isotropic) {
             std::vector<double> mine;
             for (const InterfaceWave& wave : result.waves) {
                 if (wave.kind == kind) mine.push_back(wave.power);
             }
-            if (isotropic) {
-                worst = std::max(worst, std::abs(mine.at(0) - (berreman_power[0] + berreman_power[1])));
+            const bool degenerate = !isotropic && std::abs(modes[0].q - modes[1].q) < kNearlyDegenerate;
+            if (isotropic || degenerate) {
+                near_degenerate += degenerate ? 1 : 0;
+                worst = std::max(worst, std::abs(std::accumulate(mine.begin(), mine.end(), 0.0) - (berreman_power[0] + berreman_power[1])));
                 return;
             }
             std::sort(mine.begin(), mine.end());
             std::sort(berreman_power.begin(), berreman_power.end());
             worst = std::max({worst, std::abs(mine.at(0) - berreman_power[0]), std::abs(mine.at(1) - berreman_power[1])});
         };
-        compare(Kind::reflected, stack.reflected_power, medium1.is_isotropic());
-        compare(Kind::transmitted, stack.transmitted_power, medium2.is_isotropic());
+        compare(Kind::reflected, stack.reflected_power, stack.reflected_modes, medium1.is_isotropic());
+        compare(Kind::transmitted, stack.transmitted_power, stack.transmitted_modes, medium2.is_isotropic());
         ++compared;
     }
-    test.check("max |power difference| over " + std::to_string(compared) + " cases", worst, 0.0, 1e-10);
+    test.check("max |power difference| over " + std::to_string(compared) + " cases (" + std::to_string(near_degenerate) +
+                   " nearly degenerate pairs compared by their total)",
+               worst, 0.0, 1e-10);
     return test;
 }
 

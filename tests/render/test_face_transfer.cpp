@@ -1,5 +1,6 @@
-// The reciprocity the tracer relies on inside crystals, against direct forward solves of the interface
-// model: light from air into a mode, and a mode reflected into a mode, carry the reversed problem's powers.
+// The reciprocity the tracer relies on at every face, against direct forward solves of the interface
+// model: light from air into a mode, a mode reflected into a mode, a mode out into air and air reflected
+// off a crystal carry the reversed problem's powers and polarizations.
 #include "face_transfer.hpp"
 
 #include "petroscope/optics/polarization.hpp"
@@ -8,6 +9,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <array>
 #include <random>
 
@@ -60,6 +62,67 @@ TEST(FaceTransfer, ForwardTransfersIntoACrystalModeAreTheReversedProblemsByRecip
         }
     }
     EXPECT_GT(compared, 300);
+}
+
+// The forward solve's wave along `direction` of `kind`, or nullptr.
+const InterfaceWave* find_wave(const InterfaceResult& result, InterfaceWave::Kind kind, const Eigen::Vector3d& direction) {
+    for (const InterfaceWave& wave : result.waves) {
+        if (wave.kind == kind && !wave.evanescent && wave.direction.dot(direction) > 1.0 - 1e-9) return &wave;
+    }
+    return nullptr;
+}
+
+TEST(FaceTransfer, ForwardTransfersFromOutsideAreTheReversedProblemsByReciprocity) {
+    std::mt19937_64 rng(5);
+    std::normal_distribution<double> gauss;
+    const OpticalMedium air = OpticalMedium::isotropic(1.0);
+    const Eigen::Vector3d outward = Eigen::Vector3d(-0.1, 0.4, 1.0).normalized();
+    const std::array<Eigen::Vector4d, 4> states{Eigen::Vector4d(1, 0, 0, 0), Eigen::Vector4d(1, 1, 0, 0), Eigen::Vector4d(1, 0, 1, 0),
+                                                Eigen::Vector4d(1, 0, 0, 1)};
+    int reflections = 0, refractions = 0;
+    double worst = 0.0, circular_terms = 0.0;
+    for (int trial = 0; trial < 40; ++trial) {
+        const Eigen::Quaterniond turn = Eigen::Quaterniond(gauss(rng), gauss(rng), gauss(rng), gauss(rng)).normalized();
+        // A biaxial crystal (aragonite's principal indices), calcite, and an absorbing uniaxial crystal whose
+        // complex reflection coefficients give the reflections circular terms (reciprocity holds for any
+        // symmetric ε; the renderer's crystals are lossless, so only reflection is compared there).
+        const std::array<Eigen::Vector3cd, 3> indices{Eigen::Vector3cd(1.530, 1.681, 1.686), Eigen::Vector3cd(1.658, 1.658, 1.486),
+                                                      Eigen::Vector3cd({2.0, 0.8}, {2.0, 0.8}, {1.7, 0.3})};
+        const bool absorbing = trial % 3 == 2;
+        const OpticalMedium crystal{indices[static_cast<std::size_t>(trial % 3)], turn.toRotationMatrix()};
+        const Eigen::Vector3d traced = (-outward + 0.6 * Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng))).normalized();
+        if (!(traced.dot(-outward) > 0.05)) continue;
+        for (const Branch& branch : branches_from_outside(outward, traced, air, crystal)) {
+            if (!branch.in_crystal) {
+                // Air → air: the forward reflection of light arriving along −branch, for each basis state.
+                const Eigen::Matrix4d mueller = reflection_mueller(branch);
+                circular_terms = std::max(circular_terms, std::abs(mueller(2, 3)));
+                for (const Eigen::Vector4d& state : states) {
+                    InterfaceIncidence incidence;
+                    incidence.direction = -branch.wave_normal;
+                    incidence.coherency = coherency_from_stokes(state);
+                    const InterfaceWave* wave = find_wave(solve_interface(-outward, incidence, air, crystal), InterfaceWave::Kind::reflected, -traced);
+                    ASSERT_NE(wave, nullptr);
+                    worst = std::max(worst, (mueller * state - wave->stokes).cwiseAbs().maxCoeff());
+                    ++reflections;
+                }
+                continue;
+            }
+            // Mode → air: the light leaving along −traced for unit power of the mode arriving along −branch.
+            if (absorbing || walks_off(-branch.wave_normal, outward)) continue;
+            InterfaceIncidence incidence;
+            incidence.direction = -branch.wave_normal;
+            incidence.mode = branch.mode;
+            const InterfaceWave* wave = find_wave(solve_interface(outward, incidence, crystal, air), InterfaceWave::Kind::transmitted, -traced);
+            ASSERT_NE(wave, nullptr);
+            worst = std::max(worst, (refraction_out_stokes(branch) - wave->stokes).cwiseAbs().maxCoeff());
+            ++refractions;
+        }
+    }
+    EXPECT_LT(worst, 1e-10);
+    EXPECT_GT(circular_terms, 0.01);  // so that the signs of S3 are tested
+    EXPECT_GT(reflections, 100);
+    EXPECT_GT(refractions, 50);
 }
 
 }  // namespace

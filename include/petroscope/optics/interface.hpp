@@ -34,6 +34,9 @@ struct InterfaceIncidence {
     /// Anisotropic medium 1 (required): the incident eigenmode, fast or slow, or for a uniaxial medium
     /// ordinary or extraordinary.
     std::optional<InterfaceMode> mode;
+    /// Isotropic medium 1: also give every wave its Mueller matrix (InterfaceWave::mueller), at the cost of
+    /// four more evaluations of each wave's Stokes vector.
+    bool with_mueller = false;
 };
 
 struct InterfaceWave {
@@ -47,6 +50,11 @@ struct InterfaceWave {
     double power = 0.0;
     /// Of the transverse E field in the wave's (s, p) basis, scaled so that S0 = power.
     Eigen::Vector4d stokes = Eigen::Vector4d::Zero();
+    /// Isotropic medium 1 and InterfaceIncidence::with_mueller: the Mueller matrix from the incident Stokes
+    /// vector (the incident wave's (s, p) basis, S0 = 1 for unit incident power) to `stokes`, so that
+    /// stokes = mueller · S for the incident state; its first row gives the wave's power for any incident
+    /// polarization.
+    std::optional<Eigen::Matrix4d> mueller;
     /// Fully polarized incidence on an isotropic medium 1, isotropic wave: (E_s, E_p) for the unit
     /// incident Jones vector (so r_s, r_p, t_s, t_p for s and p incidence).
     std::optional<JonesVector> jones;
