@@ -64,7 +64,9 @@ TEST(FaceTransfer, ForwardTransfersIntoACrystalModeAreTheReversedProblemsByRecip
     EXPECT_GT(compared, 300);
 }
 
-// The forward solve's wave along `direction` of `kind`, or nullptr.
+// The forward solve's wave along `direction` of `kind`, or nullptr (a pointer into `result`, which must
+// outlive it: not into a temporary).
+const InterfaceWave* find_wave(InterfaceResult&& result, InterfaceWave::Kind kind, const Eigen::Vector3d& direction) = delete;
 const InterfaceWave* find_wave(const InterfaceResult& result, InterfaceWave::Kind kind, const Eigen::Vector3d& direction) {
     for (const InterfaceWave& wave : result.waves) {
         if (wave.kind == kind && !wave.evanescent && wave.direction.dot(direction) > 1.0 - 1e-9) return &wave;
@@ -101,7 +103,8 @@ TEST(FaceTransfer, ForwardTransfersFromOutsideAreTheReversedProblemsByReciprocit
                     InterfaceIncidence incidence;
                     incidence.direction = -branch.wave_normal;
                     incidence.coherency = coherency_from_stokes(state);
-                    const InterfaceWave* wave = find_wave(solve_interface(-outward, incidence, air, crystal), InterfaceWave::Kind::reflected, -traced);
+                    const InterfaceResult forward = solve_interface(-outward, incidence, air, crystal);
+                    const InterfaceWave* wave = find_wave(forward, InterfaceWave::Kind::reflected, -traced);
                     ASSERT_NE(wave, nullptr);
                     worst = std::max(worst, (mueller * state - wave->stokes).cwiseAbs().maxCoeff());
                     ++reflections;
@@ -113,7 +116,8 @@ TEST(FaceTransfer, ForwardTransfersFromOutsideAreTheReversedProblemsByReciprocit
             InterfaceIncidence incidence;
             incidence.direction = -branch.wave_normal;
             incidence.mode = branch.mode;
-            const InterfaceWave* wave = find_wave(solve_interface(outward, incidence, crystal, air), InterfaceWave::Kind::transmitted, -traced);
+            const InterfaceResult forward = solve_interface(outward, incidence, crystal, air);
+            const InterfaceWave* wave = find_wave(forward, InterfaceWave::Kind::transmitted, -traced);
             ASSERT_NE(wave, nullptr);
             worst = std::max(worst, (refraction_out_stokes(branch) - wave->stokes).cwiseAbs().maxCoeff());
             ++refractions;
