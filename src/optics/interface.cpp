@@ -164,6 +164,14 @@ ExtendedMatrix solve_full_pivoting(Eigen::Matrix<ExtendedComplex, 4, 4> a, const
     return x;
 }
 
+// The flux of the incident state `coherency` (in the input basis) over the input modes, which carry no
+// cross flux.
+Extended incident_flux_of(const ExtendedMatrix& coherency, const std::vector<LocalMode*>& inputs) {
+    Extended flux = 0.0L;
+    for (std::size_t i = 0; i < inputs.size(); ++i) flux += coherency(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)).real() * inputs[i]->flux_z;
+    return flux;
+}
+
 // One outgoing wave's share of the boundary solution: per mode of its group the amplitudes for each
 // input basis state (1 × inputs) and the mode's flux, and the wave's transverse field in its own (s, p)
 // basis per input state (2 × inputs).
@@ -203,8 +211,7 @@ Eigen::Matrix4d wave_mueller(const WaveAmplitudes& wave, const std::vector<Local
     Eigen::Matrix4d mueller;
     for (int k = 0; k < 4; ++k) {
         const ExtendedMatrix coherency = coherency_from_stokes(states[static_cast<std::size_t>(k)]).cast<ExtendedComplex>();
-        const Extended incident_flux = coherency(0, 0).real() * inputs[0]->flux_z + coherency(1, 1).real() * inputs[1]->flux_z;
-        const Eigen::Vector4d stokes = wave_stokes(wave, coherency, incident_flux).stokes;
+        const Eigen::Vector4d stokes = wave_stokes(wave, coherency, incident_flux_of(coherency, inputs)).stokes;
         mueller.col(k) = k == 0 ? stokes : Eigen::Vector4d(stokes - mueller.col(0));
     }
     return mueller;
@@ -332,8 +339,7 @@ InterfaceResult solve_interface(const Eigen::Vector3d& normal_in, const Interfac
     } else {
         jones = ExtendedJones::Ones(1);
     }
-    Extended incident_flux = 0.0L;
-    for (int i = 0; i < input_count; ++i) incident_flux += coherency(i, i).real() * inputs[static_cast<std::size_t>(i)]->flux_z;
+    const Extended incident_flux = incident_flux_of(coherency, inputs);
 
     std::array<Group, 4> groups;
     std::size_t group_count = 0;

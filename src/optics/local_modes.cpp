@@ -155,7 +155,6 @@ ExtendedComplex determinant_full_pivoting(Matrix3x a) {
     return determinant;
 }
 
-// General medium: roots of det M(q), a quartic.
 // The roots of det M(q) = 0, a quartic, for any medium: the eigenvalues of its companion matrix (double is
 // enough for starting values), polished by Newton in long double.
 std::array<ExtendedComplex, 4> quartic_roots(const Matrix3x& epsilon, Extended xi) {

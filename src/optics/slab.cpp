@@ -9,7 +9,6 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <optional>
 #include <utility>
 
 namespace petroscope {
@@ -110,22 +109,33 @@ double solve_bracketed(const SheetEquation<double>& equation, double end_a, doub
 }
 
 // Uniaxial crystal (b₂ = ±b₁ = ±b): |N × b₁||N × b₂| = |N|² − (N·b)², so g_σ is the quadratic
-// αq² + βq + γ (α > 0: the sheet is an ellipsoid). Its real roots, lower then upper, by the numerically
-// stable form (Press et al., Numerical Recipes, §5.6); nothing when the line misses the sheet
-// (evanescent modes). `orientation_sign` is b₁·b₂.
+// αq² + βq + γ (α > 0: the sheet is an ellipsoid). `orientation_sign` is b₁·b₂.
 template <typename Real>
-std::optional<std::pair<Real, Real>> quadratic_roots(const SheetEquation<Real>& e, Real orientation_sign) {
-    const Real level = e.a_half_sum + e.sigma * e.b_half_difference;
-    const Real cross = e.b_half_difference * (orientation_sign - e.sigma);
-    const Real alpha = level + cross * e.b1z * e.b1z;
-    const Real beta = Real(2) * cross * e.u1 * e.b1z;
-    const Real gamma = level * e.xi2 + cross * e.u1 * e.u1 - Real(1);
-    const Real discriminant = beta * beta - Real(4) * alpha * gamma;
-    if (!(discriminant >= Real(0))) return std::nullopt;
-    const Real t = Real(-0.5) * (beta + std::copysign(std::sqrt(discriminant), beta));
-    const Real r1 = t / alpha;
-    const Real r2 = t != Real(0) ? gamma / t : -r1;
-    return std::minmax(r1, r2);
+struct SheetQuadratic {
+    Real alpha, beta, gamma;
+    SheetQuadratic(const SheetEquation<Real>& e, Real orientation_sign) {
+        const Real level = e.a_half_sum + e.sigma * e.b_half_difference;
+        const Real cross = e.b_half_difference * (orientation_sign - e.sigma);
+        alpha = level + cross * e.b1z * e.b1z;
+        beta = Real(2) * cross * e.u1 * e.b1z;
+        gamma = level * e.xi2 + cross * e.u1 * e.u1 - Real(1);
+    }
+    /// Negative when the line N = (ξ, q) misses the sheet (evanescent modes).
+    Real discriminant() const { return beta * beta - Real(4) * alpha * gamma; }
+    /// The real roots, lower then upper, for a discriminant ≥ 0, by the numerically stable form (Press et
+    /// al., Numerical Recipes, §5.6).
+    std::pair<Real, Real> roots(Real discriminant) const {
+        const Real t = Real(-0.5) * (beta + std::copysign(std::sqrt(discriminant), beta));
+        const Real r1 = t / alpha;
+        const Real r2 = t != Real(0) ? gamma / t : -r1;
+        return std::minmax(r1, r2);
+    }
+};
+
+// The forward root when g(0) < 0: then the roots are real and of opposite signs (a discriminant that
+// rounding makes slightly negative is taken as zero), and the upper one is forward.
+double forward_quadratic_root(const SheetQuadratic<double>& quadratic) {
+    return quadratic.roots(std::max(quadratic.discriminant(), 0.0)).second;
 }
 
 // Relative splitting of the two sheets' roots below which their vibration directions are taken at one
@@ -199,8 +209,7 @@ bool solve_forward_modes(const BinormalFrame& frame, const Eigen::Vector2d& xi, 
         // |ξ| reaches the sheet's index: no propagating mode on this sheet.
         if (equation.value(0.0, &derivative) >= 0.0) return false;
         q[static_cast<std::size_t>(sheet)] =
-            // g(0) < 0 and α > 0: the quadratic's roots are real and of opposite signs, the upper one forward.
-            polish(equation, frame.uniaxial() ? quadratic_roots(equation, frame.binormal_1.dot(frame.binormal_2))->second
+            polish(equation, frame.uniaxial() ? forward_quadratic_root(SheetQuadratic(equation, frame.binormal_1.dot(frame.binormal_2)))
                                               : solve_bracketed(equation, 0.0, 2.0 * n_max, guess[sheet]));  // g(2 n_max) > 0
     }
     const auto fields = mode_fields(frame, xi, q[0], q[1]);
@@ -216,10 +225,12 @@ bool solve_sheet_modes_extended(const BasicBinormalFrame<long double>& frame, co
         const SheetEquation<long double> equation = sheet_equation(frame, xi, sheet);
         if (frame.uniaxial()) {
             // Closed form; then Newton in long double, as for the other roots.
-            const auto both = quadratic_roots(equation, frame.binormal_1.dot(frame.binormal_2));
-            if (!both) return false;  // the line misses the sheet: evanescent modes
-            roots[static_cast<std::size_t>(2 * sheet)] = polished(equation, both->second);
-            roots[static_cast<std::size_t>(2 * sheet + 1)] = polished(equation, both->first);
+            const SheetQuadratic quadratic(equation, frame.binormal_1.dot(frame.binormal_2));
+            const long double discriminant = quadratic.discriminant();
+            if (!(discriminant >= 0.0L)) return false;  // the line misses the sheet: evanescent modes
+            const auto [lower, upper] = quadratic.roots(discriminant);
+            roots[static_cast<std::size_t>(2 * sheet)] = polished(equation, upper);
+            roots[static_cast<std::size_t>(2 * sheet + 1)] = polished(equation, lower);
             continue;
         }
         const SheetEquation<double> rounded = equation.as<double>();
