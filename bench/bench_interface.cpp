@@ -1,5 +1,6 @@
-// Interface solves per second: random isotropic → biaxial cases (random indices, orientations, incidence
-// 0–89°, unpolarized light), one core.
+// Interface solves per second: random isotropic → biaxial and biaxial → biaxial cases (random indices,
+// orientations, incidence 0–89°, unpolarized light or the fast mode), one core; in long double (the
+// default) and in double (InterfaceArithmetic::double_precision, the renderer's).
 #include "petroscope/optics/interface.hpp"
 
 #include <benchmark/benchmark.h>
@@ -42,8 +43,9 @@ std::vector<Case> random_cases(int count, bool biaxial_medium1) {
     return cases;
 }
 
-void solve_cases(benchmark::State& state, bool biaxial_medium1) {
-    const std::vector<Case> cases = random_cases(1000, biaxial_medium1);
+void solve_cases(benchmark::State& state, bool biaxial_medium1, InterfaceArithmetic arithmetic) {
+    std::vector<Case> cases = random_cases(1000, biaxial_medium1);
+    for (Case& c : cases) c.incidence.arithmetic = arithmetic;
     std::size_t i = 0;
     for (auto _ : state) {
         const Case& c = cases[i++ % cases.size()];
@@ -53,10 +55,14 @@ void solve_cases(benchmark::State& state, bool biaxial_medium1) {
     state.counters["solves_per_second"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
-void IsotropicToBiaxial(benchmark::State& state) { solve_cases(state, false); }
-void BiaxialToBiaxial(benchmark::State& state) { solve_cases(state, true); }
+void IsotropicToBiaxial(benchmark::State& state) { solve_cases(state, false, InterfaceArithmetic::long_double); }
+void BiaxialToBiaxial(benchmark::State& state) { solve_cases(state, true, InterfaceArithmetic::long_double); }
+void IsotropicToBiaxialDouble(benchmark::State& state) { solve_cases(state, false, InterfaceArithmetic::double_precision); }
+void BiaxialToBiaxialDouble(benchmark::State& state) { solve_cases(state, true, InterfaceArithmetic::double_precision); }
 BENCHMARK(IsotropicToBiaxial)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BiaxialToBiaxial)->Unit(benchmark::kMicrosecond);
+BENCHMARK(IsotropicToBiaxialDouble)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BiaxialToBiaxialDouble)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace petroscope

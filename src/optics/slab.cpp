@@ -10,6 +10,7 @@
 #include <limits>
 #include <numbers>
 #include <utility>
+#include <type_traits>
 
 namespace petroscope {
 namespace {
@@ -40,6 +41,10 @@ struct SheetEquation {
         *derivative = Real(2) * a_half_sum * q + b_half_difference * (b1z * nb2 + b2z * nb1 + sigma * droot);
         return g;
     }
+    Real value(Real q) const {
+        Real unused = 0;
+        return value(q, &unused);
+    }
 
     template <typename Other>
     SheetEquation<Other> as() const {
@@ -61,8 +66,8 @@ SheetEquation<Real> sheet_equation(const BasicBinormalFrame<Real>& frame, const 
             frame.binormal_2.z()};
 }
 
-// Newton steps in extended precision, each kept only if it lowers |g| and moves q by less than 1e-6·q
-// (the double root is already that close): at the kink of a sheet on a binormal a plain step can jump.
+// Newton steps in long double, each kept only if it lowers |g| and moves q by less than 1e-6·q (the root is
+// already that close): at the kink of a sheet on a binormal a plain step can jump.
 long double polished(const SheetEquation<long double>& equation, long double q) {
     long double derivative = 0.0L;
     long double value = equation.value(q, &derivative);
@@ -79,10 +84,13 @@ long double polished(const SheetEquation<long double>& equation, long double q) 
     return q;
 }
 
-// Near grazing incidence g'(q) ∝ q → 0, and evaluating g in double leaves q off by about ε/g'; polished in
-// long double the root is exact to its last bit, so the mode fields solve the wave equation to rounding.
-double polish(const SheetEquation<double>& equation, double q) {
-    return static_cast<double>(polished(equation.as<long double>(), q));
+// Roots are polished in long double whatever `Real`. Near grazing incidence g'(q) ∝ q → 0, and evaluating g
+// in double leaves q off by about ε/g'; polished in long double the root is exact to its last bit, so the
+// mode fields solve the wave equation to rounding. Near a binormal |N × b| keeps only half the digits
+// (√ε: 1e-8 in double), which would split the two sheets' roots there by more than kCommonNormalSplitting.
+template <typename Real>
+Real polish(const SheetEquation<Real>& equation, Real q) {
+    return static_cast<Real>(polished(equation.template as<long double>(), q));
 }
 
 // Root of the sheet equation between `end_a` (where g < 0: q = 0) and `end_b` (where g > 0), by Newton's
@@ -142,17 +150,21 @@ double forward_quadratic_root(const SheetQuadratic<double>& quadratic) {
 // common wave normal. Within ~1e-16 rad of a binormal the two roots' normals can lie on opposite sides of
 // it, where the projection of the binormal flips: computed separately, D_fast at one normal and D_slow at
 // the other can then be parallel. At a common normal they are orthogonal by construction, and the modes
-// being degenerate to this precision, any orthogonal pair is a solution.
+// being degenerate to this precision, any orthogonal pair is a solution. Roots polished in long double from
+// a long-double frame split by about 3e-10 on a binormal; from a double frame (the double-precision
+// interface solve) by about √ε of double (4e-8 measured), which its own threshold covers.
 constexpr double kCommonNormalSplitting = 1e-9;
+constexpr double kCommonNormalSplittingOfDoubleFrames = 1e-7;
 
-// The fields of the two modes with wave vectors (ξ, q_fast) and (ξ, q_slow): E = η·D, H = N × E.
+// The fields of the two modes with wave vectors (ξ, q_fast) and (ξ, q_slow): E = η·D, H = N × E; at a
+// common normal when the roots split by less than `common_normal_splitting` (relative).
 template <typename Real>
 std::array<std::pair<Eigen::Matrix<Real, 3, 1>, Eigen::Matrix<Real, 3, 1>>, 2> mode_fields(
-    const BasicBinormalFrame<Real>& frame, const Eigen::Vector2d& xi, Real q_fast, Real q_slow) {
+    const BasicBinormalFrame<Real>& frame, const Eigen::Vector2d& xi, Real q_fast, Real q_slow, double common_normal_splitting) {
     using Vector = Eigen::Matrix<Real, 3, 1>;
     const Vector n_fast(xi.x(), xi.y(), q_fast), n_slow(xi.x(), xi.y(), q_slow);
     Vector d_fast, d_slow;
-    if (std::abs(q_fast - q_slow) <= Real(kCommonNormalSplitting) * std::abs(q_fast)) {
+    if (std::abs(q_fast - q_slow) <= Real(common_normal_splitting) * std::abs(q_fast)) {
         std::tie(d_fast, d_slow) = vibration_directions(frame, Vector((n_fast + n_slow).normalized()));
     } else {
         d_fast = vibration_directions(frame, Vector(n_fast.normalized())).first;
@@ -212,69 +224,69 @@ bool solve_forward_modes(const BinormalFrame& frame, const Eigen::Vector2d& xi, 
             polish(equation, frame.uniaxial() ? forward_quadratic_root(SheetQuadratic(equation, frame.binormal_1.dot(frame.binormal_2)))
                                               : solve_bracketed(equation, 0.0, 2.0 * n_max, guess[sheet]));  // g(2 n_max) > 0
     }
-    const auto fields = mode_fields(frame, xi, q[0], q[1]);
+    const auto fields = mode_fields(frame, xi, q[0], q[1], kCommonNormalSplitting);
     for (std::size_t sheet = 0; sheet < 2; ++sheet) modes[sheet] = SlabMode{q[sheet], fields[sheet].first, fields[sheet].second};
     return true;
 }
 
-bool solve_sheet_modes_extended(const BasicBinormalFrame<long double>& frame, const Eigen::Vector2d& xi,
-                                std::array<ExtendedSlabMode, 4>& modes) {
-    const long double n_max = 1.0L / std::sqrt(frame.c);
-    std::array<long double, 4> roots{};
+template <typename Real>
+bool solve_sheet_modes(const BasicBinormalFrame<Real>& frame, const Eigen::Vector2d& xi, std::array<SheetMode<Real>, 4>& modes) {
+    const Real n_max = Real(1) / std::sqrt(frame.c);
+    std::array<Real, 4> roots{};
     for (int sheet = 0; sheet < 2; ++sheet) {
-        const SheetEquation<long double> equation = sheet_equation(frame, xi, sheet);
+        const SheetEquation<Real> equation = sheet_equation(frame, xi, sheet);
         if (frame.uniaxial()) {
             // Closed form; then Newton in long double, as for the other roots.
             const SheetQuadratic quadratic(equation, frame.binormal_1.dot(frame.binormal_2));
-            const long double discriminant = quadratic.discriminant();
-            if (!(discriminant >= 0.0L)) return false;  // the line misses the sheet: evanescent modes
+            const Real discriminant = quadratic.discriminant();
+            if (!(discriminant >= Real(0))) return false;  // the line misses the sheet: evanescent modes
             const auto [lower, upper] = quadratic.roots(discriminant);
-            roots[static_cast<std::size_t>(2 * sheet)] = polished(equation, upper);
-            roots[static_cast<std::size_t>(2 * sheet + 1)] = polished(equation, lower);
+            roots[static_cast<std::size_t>(2 * sheet)] = polish(equation, upper);
+            roots[static_cast<std::size_t>(2 * sheet + 1)] = polish(equation, lower);
             continue;
         }
-        const SheetEquation<double> rounded = equation.as<double>();
-        const auto g = [&](long double q) {
-            long double unused = 0.0L;
-            return equation.value(q, &unused);
-        };
+        const SheetEquation<double> rounded = equation.template as<double>();
         // A point of the line inside the sheet; g is unimodal along the line (the sheet is star-shaped about
         // the origin), so each side of any inside point holds one root. q = 0 is inside when |ξ| is below the
         // sheet's index along ξ̂, the usual case; otherwise the minimum of g on [−2n_max, 2n_max] is searched
         // for (golden-section search, Press et al., Numerical Recipes §10.2).
-        long double inside = 0.0L;
-        if (!(g(inside) < 0.0L)) {
-            const long double golden = 0.5L * (std::sqrt(5.0L) - 1.0L);
-            long double low = -2.0L * n_max, high = 2.0L * n_max;
-            long double left = high - golden * (high - low), right = low + golden * (high - low);
-            long double g_left = g(left), g_right = g(right);
-            for (int iteration = 0; iteration < 100 && high - low > 1e-12L; ++iteration) {
+        Real inside = Real(0);
+        if (!(equation.value(inside) < Real(0))) {
+            const Real golden = Real(0.5) * (std::sqrt(Real(5)) - Real(1));
+            Real low = -Real(2) * n_max, high = Real(2) * n_max;
+            Real left = high - golden * (high - low), right = low + golden * (high - low);
+            Real g_left = equation.value(left), g_right = equation.value(right);
+            for (int iteration = 0; iteration < 100 && high - low > Real(1e-12L); ++iteration) {
                 if (g_left < g_right) {
                     high = right; right = left; g_right = g_left;
-                    left = high - golden * (high - low); g_left = g(left);
+                    left = high - golden * (high - low); g_left = equation.value(left);
                 } else {
                     low = left; left = right; g_left = g_right;
-                    right = low + golden * (high - low); g_right = g(right);
+                    right = low + golden * (high - low); g_right = equation.value(right);
                 }
             }
-            inside = 0.5L * (low + high);
-            if (!(g(inside) < 0.0L)) return false;  // the line misses the sheet: evanescent modes
+            inside = Real(0.5) * (low + high);
+            if (!(equation.value(inside) < Real(0))) return false;  // the line misses the sheet: evanescent modes
         }
         for (int end = 0; end < 2; ++end) {
             // A root between the inside point and ±2 n_max, then Newton in long double.
-            const double outside = end == 0 ? static_cast<double>(2.0L * n_max) : static_cast<double>(-2.0L * n_max);
+            const double outside = end == 0 ? static_cast<double>(Real(2) * n_max) : static_cast<double>(-Real(2) * n_max);
             roots[static_cast<std::size_t>(2 * sheet + end)] =
-                polished(equation, solve_bracketed(rounded, static_cast<double>(inside), outside, std::numeric_limits<double>::quiet_NaN()));
+                polish<Real>(equation, static_cast<Real>(solve_bracketed(rounded, static_cast<double>(inside), outside, std::numeric_limits<double>::quiet_NaN())));
         }
     }
     // The upper (end 0) and lower (end 1) roots of the two sheets, paired for the vibration directions.
     for (std::size_t end = 0; end < 2; ++end) {
-        const auto fields = mode_fields(frame, xi, roots[end], roots[2 + end]);
+        const auto fields = mode_fields(frame, xi, roots[end], roots[2 + end],
+                                        std::is_same_v<Real, double> ? kCommonNormalSplittingOfDoubleFrames : kCommonNormalSplitting);
         modes[end] = {roots[end], fields[0].first};
         modes[2 + end] = {roots[2 + end], fields[1].first};
     }
     return true;
 }
+
+template bool solve_sheet_modes(const BasicBinormalFrame<double>&, const Eigen::Vector2d&, std::array<SheetMode<double>, 4>&);
+template bool solve_sheet_modes(const BasicBinormalFrame<long double>&, const Eigen::Vector2d&, std::array<SheetMode<long double>, 4>&);
 
 SlabModes solve_slab_modes(const BinormalFrame& frame, const TangentialWavevector& direction,
                            const Eigen::Vector2d& forward_guess) {

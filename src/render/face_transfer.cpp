@@ -45,6 +45,7 @@ std::vector<Branch> branches_from_outside(const Eigen::Vector3d& outward, const 
     InterfaceIncidence incidence;
     incidence.direction = direction;
     incidence.with_mueller = true;
+    incidence.arithmetic = InterfaceArithmetic::double_precision;
     return branches(solve_interface(-outward, incidence, outside, crystal), false);
 }
 
@@ -53,6 +54,7 @@ std::vector<Branch> branches_from_inside(const Eigen::Vector3d& outward, const E
     InterfaceIncidence incidence;
     incidence.direction = wave_normal;
     incidence.mode = mode;
+    incidence.arithmetic = InterfaceArithmetic::double_precision;
     return branches(solve_interface(outward, incidence, crystal, outside), true);
 }
 

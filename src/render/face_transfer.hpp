@@ -44,6 +44,9 @@ struct Branch {
     Eigen::Matrix4d mueller = Eigen::Matrix4d::Zero();
 };
 
+/// Both solve the interface in double precision (InterfaceArithmetic::double_precision; its accuracy is
+/// tested against the long-double solve, test_interface.cpp).
+///
 /// The traced path arrives in the surrounding medium `outside` along `direction` at a face
 /// whose outward normal is `outward`: the branches (reflected into the outside medium, refracted modes).
 std::vector<Branch> branches_from_outside(const Eigen::Vector3d& outward, const Eigen::Vector3d& direction, const OpticalMedium& outside,

@@ -24,6 +24,12 @@ std::string_view wave_mode_name(InterfaceMode mode);
 /// The inverse of wave_mode_name; nothing for any other text.
 std::optional<InterfaceMode> parse_wave_mode(std::string_view name);
 
+/// The arithmetic of the solve. long_double (x87 extended, 64-bit significand): the fluxes of the waves
+/// balance to about 1e-15 even near grazing incidence, critical angles and optic axes (docs/interface.md).
+/// double_precision: about twice as fast, with errors some thousand times larger where the modes are
+/// ill-conditioned, for callers that need far less (the renderer; its test bounds the difference).
+enum class InterfaceArithmetic { long_double, double_precision };
+
 struct InterfaceIncidence {
     /// Wave normal in medium 1 (lab frame); its component along the interface normal must be positive.
     Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();
@@ -37,6 +43,7 @@ struct InterfaceIncidence {
     /// Isotropic medium 1: also give every wave its Mueller matrix (InterfaceWave::mueller), at the cost of
     /// four more evaluations of each wave's Stokes vector.
     bool with_mueller = false;
+    InterfaceArithmetic arithmetic = InterfaceArithmetic::long_double;
 };
 
 struct InterfaceWave {

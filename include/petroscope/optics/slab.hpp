@@ -43,20 +43,22 @@ SlabMode time_reversed(const SlabMode& mode);
 bool solve_forward_modes(const BinormalFrame& frame, const Eigen::Vector2d& xi, const Eigen::Vector2d& guess,
                          std::array<SlabMode, 2>& modes);
 
-/// A forward mode in long double: q and E (H = N × E), for the interface model (optics/interface.hpp),
-/// whose fluxes must balance far below double precision near grazing incidence.
-struct ExtendedSlabMode {
-    long double q = 0.0L;
-    Eigen::Matrix<long double, 3, 1> e_field = Eigen::Matrix<long double, 3, 1>::Zero();
+/// A mode in `Real` (long double or double): q and E (H = N × E), for the interface model
+/// (optics/interface.hpp), whose fluxes balance far below double precision near grazing incidence when
+/// `Real` is long double.
+template <typename Real>
+struct SheetMode {
+    Real q = Real(0);
+    Eigen::Matrix<Real, 3, 1> e_field = Eigen::Matrix<Real, 3, 1>::Zero();
 };
 
-/// Both real roots of each sheet for the tangential wavevector ξ, in long double, with their fields
+/// Both real roots of each sheet for the tangential wavevector ξ, in `Real`, with their fields
 /// (index 2σ, 2σ + 1 for sheet σ = 0 fast, 1 slow; forward and backward are for the caller to tell apart
 /// by their flux, since in a tilted crystal both roots of a sheet can have q > 0). The roots bracket the
 /// interval of q inside the sheet, found from the minimum of the sheet equation along the line N = (ξ, q).
-/// Returns false when a sheet has no real root (evanescent modes).
-bool solve_sheet_modes_extended(const BasicBinormalFrame<long double>& frame, const Eigen::Vector2d& xi,
-                                std::array<ExtendedSlabMode, 4>& modes);
+/// Returns false when a sheet has no real root (evanescent modes). Defined for double and long double.
+template <typename Real>
+bool solve_sheet_modes(const BasicBinormalFrame<Real>& frame, const Eigen::Vector2d& xi, std::array<SheetMode<Real>, 4>& modes);
 
 /// The four modes of the crystal for one tangential wavevector.
 struct SlabModes {
