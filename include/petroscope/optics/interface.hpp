@@ -26,8 +26,8 @@ std::optional<InterfaceMode> parse_wave_mode(std::string_view name);
 
 /// The arithmetic of the solve. long_double (x87 extended, 64-bit significand): the fluxes of the waves
 /// balance to about 1e-15 even near grazing incidence, critical angles and optic axes (docs/interface.md).
-/// double_precision: about twice as fast, with errors some thousand times larger where the modes are
-/// ill-conditioned, for callers that need far less (the renderer; its test bounds the difference).
+/// double_precision: about twice as fast, for callers that need less (the renderer); it agrees with
+/// long_double to about 4e-11 in every power and Stokes parameter, 6e-10 on an optic axis (tested).
 enum class InterfaceArithmetic { long_double, double_precision };
 
 struct InterfaceIncidence {
