@@ -8,6 +8,7 @@
 
 #include "petroscope/core/error.hpp"
 #include "petroscope/core/text.hpp"
+#include "petroscope/fit/solver_messages.hpp"
 #include "petroscope/api/conoscope_photo_model.hpp"
 #include "petroscope/io/atomic_file.hpp"
 #include "petroscope/io/data_files.hpp"
@@ -49,6 +50,7 @@ struct FitOptions {
     int candidates = 3;
     bool json = false;
     bool no_encoding_check = false;
+    bool verbose = false;
     LightOptions light;
 };
 
@@ -176,6 +178,7 @@ void run_fit_conoscope(const FitOptions& options, const std::string& minerals_di
     const auto model_png = pending.add(folder / "model.png"), side_png = pending.add(folder / "side_by_side.png");
     const auto residual_tiff = pending.add(folder / "residual.tiff"), report_path = pending.add(folder / "report.json");
 
+    show_solver_messages(options.verbose);
     const auto begin = std::chrono::steady_clock::now();
     const ConoscopeFitResult result = fit_conoscope_photo(photo_raw, model, fit, [](double f) { show_progress("fitting", f); return true; });
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
@@ -255,6 +258,7 @@ void add_fit_command(CLI::App& app, const std::string& minerals_dir) {
     conoscope->add_option("--handedness", options->handedness, "right | left: the form of an optically active mineral (quartz)")
         ->capture_default_str();
     conoscope->add_option("--candidates", options->candidates, "Thickness minima refined by Ceres")->capture_default_str()->check(CLI::Range(1, 20));
+    conoscope->add_flag("--verbose", options->verbose, "Print the solver's own messages (Ceres, glog) on standard error");
     conoscope->add_flag("--no-encoding-check", options->no_encoding_check,
                         "For a JPEG photo: skip repeating its encoding on the best fit (faster; the 1-sigma values then leave out\n"
                         "the encoding's systematic error)");

@@ -6,6 +6,7 @@
 
 #include "petroscope/api/grain_fit.hpp"
 #include "petroscope/core/error.hpp"
+#include "petroscope/fit/solver_messages.hpp"
 #include "petroscope/core/text.hpp"
 #include "petroscope/io/atomic_file.hpp"
 #include "petroscope/io/data_files.hpp"
@@ -26,7 +27,7 @@ struct GrainFitOptions {
     std::vector<std::string> photos, stages, plates, regions, masks;
     std::string mineral, orientation, euler, thickness_range = "1um:200um", output_dir;
     double plate_deg = 45.0, condenser_na = 0.0, polarizer_deg = 0.0, analyzer_deg = 90.0;
-    bool exposure_free = false, json = false;
+    bool exposure_free = false, json = false, verbose = false;
     int candidates = 4;
     LightOptions light;
 };
@@ -194,6 +195,7 @@ void run_fit_orthoscope(const GrainFitOptions& options, const std::string& miner
     const auto report_path = pending.add(folder / "report.json"), swatch_png = pending.add(folder / "colours.png");
 
     const auto begin = std::chrono::steady_clock::now();
+    show_solver_messages(options.verbose);
     const OrthoscopeFitResult result = fit_grain(plan, [](double fraction_done) {
         show_progress("fit orthoscope", fraction_done);
         return true;
@@ -240,6 +242,7 @@ void add_fit_orthoscope_command(CLI::App* fit, const std::string& minerals_dir) 
     command->add_option("--euler-deg", options->euler, "The grain's orientation, ZYZ Euler angles ALPHA,BETA,GAMMA (implies known)");
     command->add_option("--thickness-range", options->thickness_range, "The global search range, MIN:MAX with units")->capture_default_str();
     command->add_flag("--exposure-free", options->exposure_free, "Fit the exposure too (one factor for all photos)");
+    command->add_flag("--verbose", options->verbose, "Print the solver's own messages (Ceres, glog) on standard error");
     command->add_option("--condenser-na", options->condenser_na, "Condenser cone (Koehler), 0 = parallel light")->capture_default_str();
     command->add_option("--polarizer-deg", options->polarizer_deg, "Polarizer direction in the lab")->capture_default_str();
     command->add_option("--analyzer-deg", options->analyzer_deg, "Analyzer direction in the lab")->capture_default_str();

@@ -3,6 +3,7 @@
 #include "cancel_between_iterations.hpp"
 #include "photo_cost.hpp"
 #include "photo_model.hpp"
+#include "solver_messages.hpp"
 
 #include "petroscope/core/error.hpp"
 #include "petroscope/core/text.hpp"
@@ -23,6 +24,7 @@ namespace {
 
 using detail::PhotoCost;
 using detail::PhotoLevel;
+using Bounds = detail::PhotoBounds;
 
 constexpr std::array<std::string_view, kPhotoParameterCount> kNames{
     "thickness_um", "center_x_px", "center_y_px", "field_radius_px", "rotation_deg", "tilt_deg", "azimuth_deg",
@@ -97,18 +99,6 @@ double field_edge_radius(const Image& photo, const Eigen::Vector2d& centre, doub
     return fallback;
 }
 
-struct Bounds {
-    std::array<double, kPhotoParameterCount> lower, upper;
-};
-
-Bounds parameter_bounds(const ConoscopeFitOptions& options, const Image& photo) {
-    const double size = std::max(photo.width, photo.height);
-    Bounds b;
-    b.lower = {0.5 * options.thickness_min_um, -size, -size, 0.05 * size, -360.0, -89.0, -720.0, 1e-3, 1e-3, 1e-3, -0.5, 0.5, 0.0};
-    b.upper = {2.0 * options.thickness_max_um, 2.0 * size, 2.0 * size, 5.0 * size, 360.0, 89.0, 720.0, 1e3, 1e3, 1e3, 0.9, 5.0, 2500.0};
-    return b;
-}
-
 /// The least-squares problem of one level over `values` (which must outlive it): fixed parameters held
 /// by a subset manifold, free ones within their bounds.
 std::unique_ptr<ceres::Problem> make_problem(const PhotoLevel& level, PhotoParameters& values, const ConoscopeFitOptions& options,
@@ -145,14 +135,16 @@ double solve_level(const PhotoLevel& level, PhotoParameters& values, const Conos
     solver.num_threads = 1;  // the cost function uses every core itself
     solver.function_tolerance = function_tolerance;
     solver.parameter_tolerance = 1e-9;
-    solver.logging_type = ceres::SILENT;
+    solver.logging_type = detail::solver_logging();
     CancelBetweenIterations cancel(relay);
     solver.callbacks.push_back(&cancel);
     ceres::Solver::Summary summary;
     ceres::Solve(solver, problem.get(), &summary);
     relay.stop_if_cancelled();
     iterations += static_cast<int>(summary.iterations.size());
-    return summary.final_cost;
+    // A failed solve (the model undefined at the start: PhotoCost refuses such points) leaves `values` as
+    // they were and ranks last.
+    return summary.IsSolutionUsable() ? summary.final_cost : std::numeric_limits<double>::infinity();
 }
 
 /// A local minimum of the cost over thickness and its basin: the thicknesses of the neighbouring local
@@ -283,7 +275,12 @@ void uncertainties(ceres::Problem& problem, const PhotoCost& cost, const PhotoLe
     std::vector<double> jacobian(static_cast<std::size_t>(m) * kPhotoParameterCount);
     const double* parameter_block = result.values.data();
     double* jacobian_block = jacobian.data();
-    cost.Evaluate(&parameter_block, residuals.data(), &jacobian_block);
+    if (!cost.Evaluate(&parameter_block, residuals.data(), &jacobian_block)) {
+        // The model is undefined at the best fit (PhotoCost refuses it): no derivatives, so no 1σ.
+        for (std::size_t k = 0; k < kPhotoParameterCount; ++k) result.parameters[k] = {result.values[k], std::nullopt, options.free[k], false};
+        result.warnings.push_back("the model cannot be evaluated at the best fit, so no parameter has an uncertainty");
+        return;
+    }
     // Blocks of a quarter of the field radius.
     const double block_px = 0.25 * at(result.values, PhotoParameter::field_radius_px);
     std::map<std::pair<int, int>, Eigen::Matrix<double, kPhotoParameterCount, 1>> scores;
@@ -484,7 +481,7 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
     ConoscopeFitResult result;
     result.pixels_used = fine->usable_count;
     result.pixels_saturated = static_cast<int>(fine->evaluator.sample_count()) - fine->usable_count;
-    const Bounds bounds = parameter_bounds(options, photo);
+    const Bounds bounds = detail::photo_parameter_bounds(options.thickness_min_um, options.thickness_max_um, photo.width, photo.height);
     // The thickness range scanned (one thickness when it is fixed), and bounds that keep a refinement of
     // a minimum in its basin (out to the global bound where the basin reaches the end of the range).
     const bool thickness_free = options.free[index_of(PhotoParameter::thickness_um)];
@@ -584,12 +581,18 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
     // An acceptable fit explains most of the photo's variation (a figure of another crystal, or no
     // figure at all, leaves it unexplained).
     constexpr double kMinimumExplained = 0.5;
-    result.acceptable = std::isfinite(statistics.explained_variance) && statistics.explained_variance >= kMinimumExplained;
-    result.verdict = result.acceptable ? "the model explains " + format_significant(100.0 * statistics.explained_variance, 3) +
-                                             "% of the photo's variance (rms residual " + format_significant(statistics.rms, 3) + ")"
-                                       : "no acceptable fit: the best model explains only " +
-                                             format_significant(100.0 * statistics.explained_variance, 3) + "% of the photo's variance (cost " +
-                                             format_significant(best_cost, 4) + " per residual, rms residual " + format_significant(statistics.rms, 3) + ")";
+    const double explained = statistics.explained_variance;
+    result.acceptable = std::isfinite(best_cost) && std::isfinite(explained) && explained >= kMinimumExplained;
+    if (!std::isfinite(best_cost)) {
+        result.verdict = "no acceptable fit: the least-squares refinement failed (the model is undefined where it started)";
+    } else if (result.acceptable) {
+        result.verdict = "the model explains " + format_significant(100.0 * explained, 3) + "% of the photo's variance (rms residual " +
+                         format_significant(statistics.rms, 3) + ")";
+    } else {
+        result.verdict = "no acceptable fit: the best model explains only " + format_significant(100.0 * explained, 3) +
+                         "% of the photo's variance (cost " + format_significant(best_cost, 4) + " per residual, rms residual " +
+                         format_significant(statistics.rms, 3) + ")";
+    }
     reached(1.0);
     return result;
 }

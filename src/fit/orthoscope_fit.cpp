@@ -1,6 +1,7 @@
 #include "petroscope/fit/orthoscope_fit.hpp"
 
 #include "cancel_between_iterations.hpp"
+#include "solver_messages.hpp"
 
 #include "petroscope/core/error.hpp"
 #include "petroscope/core/text.hpp"
@@ -227,7 +228,7 @@ double refine(const GrainModel& model, const OrthoscopeFitOptions& options, std:
     solver.max_num_iterations = 100;
     solver.function_tolerance = 1e-12;
     solver.parameter_tolerance = 1e-10;
-    solver.logging_type = ceres::SILENT;
+    solver.logging_type = detail::solver_logging();
     CancelBetweenIterations cancel(relay);
     solver.callbacks.push_back(&cancel);
     ceres::Solver::Summary summary;

@@ -164,6 +164,13 @@ bool PhotoCost::Evaluate(double const* const* parameters, double* residuals, dou
             jacobian_row[kBlur] = d_linear * base.d_blur2[k][c];
         }
     }
+    // Ceres must never see a non-finite value (it would print every residual block and fail the solve): a
+    // point where the model is undefined is refused, so that the step to it is rejected.
+    const auto finite = [](double value) { return std::isfinite(value); };
+    if (!std::all_of(residuals, residuals + rows, finite) ||
+        (want_jacobian && !std::all_of(jacobians[0], jacobians[0] + rows * kPhotoParameterCount, finite))) {
+        return false;
+    }
     std::lock_guard lock(cache_mutex_);
     last_values_ = values;
     last_valid_ = true;

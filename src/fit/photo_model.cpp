@@ -78,6 +78,12 @@ void PhotoModelEvaluator::terms(const PhotoParameters& values, std::vector<Inter
         xis[k] = pixel_direction(values, settings.numerical_aperture, lattice_.pixels[k]) + xi_offset;
     }
     figure.evaluate(xis, out);
+    // A geometry far from the photo's (a small field, a centre off the image) maps samples beyond grazing
+    // in the immersion, |ξ| ≥ n, where no wave propagates and the kernel's terms are undefined: no light.
+    const std::size_t w_count = wavelength_count();
+    for (std::size_t k = 0; k < xis.size(); ++k) {
+        if (xis[k].norm() >= settings.surround_n) std::fill_n(out.begin() + static_cast<std::ptrdiff_t>(k * w_count), w_count, InterferenceTerms{});
+    }
 }
 
 void PhotoModelEvaluator::phase_derivatives(const std::vector<InterferenceTerms>& terms, PhaseDerivatives& out) const {
@@ -197,6 +203,14 @@ Image gaussian_blur(const Image& image, double sigma_px) {
     blur_pass(image, horizontal, 1, 0);
     blur_pass(horizontal, result, 0, 1);
     return result;
+}
+
+PhotoBounds photo_parameter_bounds(double thickness_min_um, double thickness_max_um, int width_px, int height_px) {
+    const double size = std::max(width_px, height_px);
+    PhotoBounds b;
+    b.lower = {0.5 * thickness_min_um, -size, -size, 0.05 * size, -360.0, -89.0, -720.0, 1e-3, 1e-3, 1e-3, -0.5, 0.5, 0.0};
+    b.upper = {2.0 * thickness_max_um, 2.0 * size, 2.0 * size, 5.0 * size, 360.0, 89.0, 720.0, 1e3, 1e3, 1e3, 0.9, 5.0, 2500.0};
+    return b;
 }
 
 }  // namespace petroscope::detail

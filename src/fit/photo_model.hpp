@@ -22,6 +22,17 @@ struct SampleLattice {
 /// the image.
 SampleLattice sample_lattice(const Eigen::Vector2d& centre, double radius_px, int stride_px, int width_px, int height_px);
 
+/// The box the fit keeps every parameter in.
+struct PhotoBounds {
+    PhotoParameters lower, upper;
+};
+
+/// For a photo of `width_px` × `height_px` and a thickness search over [thickness_min_um, thickness_max_um]:
+/// thickness within half the minimum and twice the maximum, centre within the image's size outside it,
+/// field radius 0.05–5 sizes, rotation ±360°, tilt ±89°, azimuth ±720°, gains 1e-3–1e3, black level
+/// −0.5–0.9, gamma 0.5–5, blur variance 0–2500 px².
+PhotoBounds photo_parameter_bounds(double thickness_min_um, double thickness_max_um, int width_px, int height_px);
+
 /// ξ (units of k₀) of the light shown at `pixel` for the geometry of `values`: the pixel's offset from
 /// the centre, y flipped to point N, turned by −rotation back into the lab, times NA / field radius.
 Eigen::Vector2d pixel_direction(const PhotoParameters& values, double numerical_aperture, const Eigen::Vector2d& pixel);

@@ -3,6 +3,7 @@
 #include "support/cli_fixture.hpp"
 
 #include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include <algorithm>
@@ -103,6 +104,23 @@ TEST_F(FitCli, PhotoOfSomethingElseHasNoAcceptableFit) {
     EXPECT_EQ(run.exit_code, 1) << run.out << run.err;
     EXPECT_NE(run.err.find("no acceptable fit"), std::string::npos) << run.err;
     EXPECT_NE(run.err.find("cost"), std::string::npos) << run.err;
+    EXPECT_LT(std::count(run.err.begin(), run.err.end(), '\n'), 50) << run.err;  // the solver stays silent
+}
+
+// A photo of noise: nothing to fit, and the solver (Ceres, glog) must not print on the terminal.
+TEST_F(FitCli, PhotoOfNoiseEndsWithAVerdictAndFewLines) {
+    cv::Mat noise(64, 64, CV_8UC3);
+    cv::randu(noise, cv::Scalar::all(0), cv::Scalar::all(256));
+    const std::filesystem::path photo = scratch() / "noise.png";
+    ASSERT_TRUE(cv::imwrite(photo.string(), noise));
+    const testing::CommandResult run =
+        petroscope("fit conoscope --photo " + testing::quoted(photo) + " --mineral calcite --thickness 100um --candidates 1 -o " +
+                   testing::quoted(out()));
+    EXPECT_EQ(run.exit_code, 1) << run.out << run.err;
+    EXPECT_NE(run.err.find("no acceptable fit"), std::string::npos) << run.err;
+    EXPECT_LT(std::count(run.err.begin(), run.err.end(), '\n'), 50) << run.err;
+    EXPECT_EQ(run.err.find("ResidualBlock"), std::string::npos) << run.err;
+    EXPECT_TRUE(std::filesystem::exists(out() / "report.json"));  // the diagnostics are written all the same
 }
 
 // fit orthoscope: photos of a one-grain quartz section (random orientation, 30 µm) between crossed polars
