@@ -192,25 +192,28 @@ std::vector<Image> render_conoscope_polarization_set(const std::vector<Conoscope
         throw InputError("the colour integrator and the figure use different wavelength grids");
     }
     std::vector<std::unique_ptr<const detail::ConoscopeEvaluator>> evaluators;
-    for (const ConoscopeSettings& each : settings) evaluators.push_back(std::make_unique<const detail::ConoscopeEvaluator>(each, principal_n));
+    for (const ConoscopeSettings& each : settings) {
+        evaluators.push_back(std::make_unique<const detail::ConoscopeEvaluator>(each, principal_n, &integrator.weights()));
+    }
     const int size = settings.front().size_px;
     std::vector<Image> images;
     for (std::size_t k = 0; k < settings.size(); ++k) images.emplace_back(size, size, 3);
     const std::size_t count = evaluators.front()->wavelength_count();
-    // XYZ of the transmission spectrum.
-    const auto store = [&integrator](Image& image, int column, int row, const std::vector<double>& transmission) {
-        const Eigen::Vector3d xyz = integrator.integrate(transmission);
+    const auto store = [](Image& image, int column, int row, const Eigen::Vector3d& xyz) {
         for (int c = 0; c < 3; ++c) image.at(column, row, c) = static_cast<float>(xyz[c]);
     };
     const auto visit = [&](SpectralState& state, int column, int row, const Eigen::Vector2d& xi, bool continues_row) {
         for (std::size_t k = 0; k < evaluators.size(); ++k) {
+            detail::PairColour colour;
             if (k == 0) {
-                evaluators[k]->spectral_pair(xi, state.scratch, continues_row, state.plus.data(), state.minus.data());
+                evaluators[k]->spectral_pair(xi, state.scratch, continues_row, state.plus.data(), state.minus.data(), &colour);
             } else {
-                evaluators[k]->spectral_pair_same_modes(xi, state.scratch, state.plus.data(), state.minus.data());
+                evaluators[k]->spectral_pair_same_modes(xi, state.scratch, state.plus.data(), state.minus.data(), &colour);
             }
-            store(images[k], column, row, state.plus);
-            store(images[k], size - 1 - column, size - 1 - row, state.minus);
+            // XYZ of the transmission spectrum where the evaluator did not give the colour itself.
+            if (!colour.written) colour.xyz = {integrator.integrate(state.plus), integrator.integrate(state.minus)};
+            store(images[k], column, row, colour.xyz[0]);
+            store(images[k], size - 1 - column, size - 1 - row, colour.xyz[1]);
         }
     };
     const std::function<SpectralState()> make_state = [count] { return SpectralState{std::vector<double>(count), std::vector<double>(count), {}}; };

@@ -88,7 +88,8 @@ bool solve_modes(const SampleCrystal& samples, const PolarizerPair& polars, cons
 
 }  // namespace
 
-ConoscopeEvaluator::ConoscopeEvaluator(const ConoscopeSettings& settings, const PrincipalIndexFunction& principal_n)
+ConoscopeEvaluator::ConoscopeEvaluator(const ConoscopeSettings& settings, const PrincipalIndexFunction& principal_n,
+                                       const std::vector<Eigen::Vector3d>* colour_weights)
     : settings_(settings),
       polars_{unit_at(settings.polarizer_deg), unit_at(settings.analyzer_deg), settings.analyzer_in},
       frames_(frames_for(settings, principal_n, settings.wavelengths_nm)),
@@ -106,6 +107,7 @@ ConoscopeEvaluator::ConoscopeEvaluator(const ConoscopeSettings& settings, const 
         const std::vector<BinormalFrame> node_frames = frames_for(settings, principal_n, nodes_->wavelengths_nm());
         node_samples_ = samples_of(node_frames, k0_thickness_for(nodes_->wavelengths_nm(), settings.thickness_um), settings.surround_n, 1);
         if (settings.gyration) set_gyration(*node_samples_, gyration_for(settings, nodes_->wavelengths_nm()));
+        if (colour_weights != nullptr && !settings.gyration && !settings.plate) node_colour_.emplace(*nodes_, *colour_weights);
     }
     if (settings.plate) {
         for (const double wavelength_nm : settings.wavelengths_nm) plate_jones_lab_.push_back(plate_jones_lab(*settings.plate, wavelength_nm, false));
@@ -115,26 +117,29 @@ ConoscopeEvaluator::ConoscopeEvaluator(const ConoscopeSettings& settings, const 
 }
 
 void ConoscopeEvaluator::spectral_pair(const Eigen::Vector2d& xi, SpectralScratch& scratch, bool continues_row, double* out_plus,
-                                       double* out_minus) const {
+                                       double* out_minus, PairColour* colour) const {
     // The every-wavelength roots can start the iterations only if they are the previous point's.
     const bool every_wavelength_continues = continues_row && scratch.every_wavelength_current;
+    if (colour != nullptr) colour->written = false;
     scratch.nodes_usable = scratch.every_wavelength_current = scratch.interpolated = false;
     if (nodes_) {
         const bool any_failed = solve_modes(*node_samples_, polars_, xi, scratch.nodes, continues_row, KernelOutput::fields);
         scratch.nodes_usable = !any_failed && smooth_over_spectrum(scratch.nodes);
-        scratch.interpolated = scratch.nodes_usable && interpolated_pair(scratch.nodes, out_plus, out_minus);
+        scratch.interpolated = scratch.nodes_usable && interpolated_pair(scratch.nodes, out_plus, out_minus, colour);
     }
     if (scratch.interpolated) return;
     exact_pair(xi, scratch.every_wavelength, every_wavelength_continues, out_plus, out_minus);
     scratch.every_wavelength_current = true;
 }
 
-void ConoscopeEvaluator::spectral_pair_same_modes(const Eigen::Vector2d& xi, SpectralScratch& scratch, double* out_plus, double* out_minus) const {
+void ConoscopeEvaluator::spectral_pair_same_modes(const Eigen::Vector2d& xi, SpectralScratch& scratch, double* out_plus, double* out_minus,
+                                                  PairColour* colour) const {
     // The modes are those of every evaluator of the set. The fields depend on the polarizer, so whether they
     // can be interpolated is decided here again, as spectral_pair of this evaluator would.
+    if (colour != nullptr) colour->written = false;
     if (scratch.nodes_usable) {
         retransmit(*node_samples_, polars_, scratch.nodes, KernelOutput::fields);
-        if (interpolated_pair(scratch.nodes, out_plus, out_minus)) return;
+        if (interpolated_pair(scratch.nodes, out_plus, out_minus, colour)) return;
     }
     if (scratch.every_wavelength_current) {
         collect_pair(xi, scratch.every_wavelength, retransmit(spectral_samples_, polars_, scratch.every_wavelength), out_plus, out_minus);

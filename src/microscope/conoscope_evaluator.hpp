@@ -3,6 +3,7 @@
 // of opposite directions: the vectorised kernel, with the reference path (optics/slab.hpp) for the
 // samples it flags; in white light the modes at a few spectral nodes, interpolated (spectral_nodes.hpp).
 #include "conoscope_kernel.hpp"
+#include "node_colour.hpp"
 #include "spectral_nodes.hpp"
 
 #include "petroscope/microscope/conoscope.hpp"
@@ -21,26 +22,38 @@ struct SpectralScratch {
     bool interpolated = false;              // the last spectral_pair interpolated
 };
 
+/// A pair's colour, where an evaluator made with colour weights takes it straight from the spectral nodes.
+struct PairColour {
+    bool written = false;               // xyz holds the colour of ξ and −ξ; the spectra were not written
+    std::array<Eigen::Vector3d, 2> xyz;  // XYZ of ξ and −ξ
+};
+
 class ConoscopeEvaluator {
 public:
     /// Pixel pairs evaluated together in monochromatic light.
     static constexpr std::size_t kMonochromaticBatch = 256;
 
-    ConoscopeEvaluator(const ConoscopeSettings& settings, const PrincipalIndexFunction& principal_n);
+    /// `colour_weights` (SpectralIntegrator::weights of the settings' grid): spectral_pair may give colours
+    /// instead of spectra (PairColour).
+    ConoscopeEvaluator(const ConoscopeSettings& settings, const PrincipalIndexFunction& principal_n,
+                       const std::vector<Eigen::Vector3d>* colour_weights = nullptr);
 
     std::size_t wavelength_count() const { return frames_.size(); }
 
     /// Transmission at every wavelength for ξ (out_plus) and −ξ (out_minus). `continues_row`: the previous
     /// call with this scratch was for a neighbouring ξ, whose roots can start the iterations. Interpolated
     /// from the spectral nodes unless the settings ask for the exact spectrum or ξ is too near an optic axis
-    /// for the interpolation (then every wavelength is solved).
+    /// for the interpolated spectrum (then every wavelength is solved). With `colour` and an evaluator made with
+    /// colour weights, a point interpolated without a plate or optical activity gets its colour from the nodes
+    /// (NodeColour) and `colour->written` says so.
     void spectral_pair(const Eigen::Vector2d& xi, SpectralScratch& scratch, bool continues_row, double* out_plus,
-                       double* out_minus) const;
+                       double* out_minus, PairColour* colour = nullptr) const;
 
     /// After spectral_pair for the same ξ and scratch by an evaluator of the same crystal, stage, thickness and
     /// wavelengths (only polars and plate differ): this evaluator's transmission, from the modes in `scratch`.
     /// It interpolates or solves every wavelength exactly where spectral_pair of this evaluator would.
-    void spectral_pair_same_modes(const Eigen::Vector2d& xi, SpectralScratch& scratch, double* out_plus, double* out_minus) const;
+    void spectral_pair_same_modes(const Eigen::Vector2d& xi, SpectralScratch& scratch, double* out_plus, double* out_minus,
+                                  PairColour* colour = nullptr) const;
 
     /// Monochromatic light: transmission for each ξ of `xis` (at most kMonochromaticBatch) and its −ξ.
     void monochromatic_pairs(const std::vector<Eigen::Vector2d>& xis, KernelScratch& scratch, double* out_plus,
@@ -61,8 +74,17 @@ private:
     /// over the spectrum (that motion puts the nearest singularity of the modes in the complex σ plane).
     bool smooth_over_spectrum(const KernelScratch& scratch) const;
     /// The transmission at every wavelength from the node fields in `scratch` (run with KernelOutput::fields);
-    /// false, with nothing written, where the fields or δ cannot be interpolated accurately enough.
-    bool interpolated_pair(const KernelScratch& scratch, double* out_plus, double* out_minus) const;
+    /// false, with nothing written, where the fields or δ cannot be interpolated accurately enough. `colour`: as
+    /// for spectral_pair.
+    bool interpolated_pair(const KernelScratch& scratch, double* out_plus, double* out_minus, PairColour* colour) const;
+    /// The colour of both sides from their node fields and δ (NodeColour); false where this evaluator has no
+    /// colour weights or the product of the amplitudes is too rough to interpolate.
+    bool colour_from_nodes(const KernelScratch& scratch, const std::array<std::array<NodeValues, 4>, 2>& side_fields,
+                           const std::array<NodeValues, 2>& side_phase, PairColour& colour) const;
+    /// The node amplitude pairs behind the analyzer (one pair) or on ŝ and ρ̂ without it (two) of one side without
+    /// a plate, as for interpolated_transmission; `pairs` says how many.
+    std::array<NodeValues, 4> analyzed_node_amplitudes(const KernelScratch& scratch, int side, const std::array<NodeValues, 4>& fields,
+                                                       int& pairs) const;
     /// interpolated_pair's transmission of one side of an optically active crystal from its node values.
     void active_interpolated_side(const KernelScratch& scratch, int side, const std::array<NodeValues, 4>& fields,
                                   const std::array<NodeValues, 4>& coupled, const NodeValues& phase, const NodeValues& product,
@@ -98,6 +120,7 @@ private:
     // White light from spectral nodes (none: every wavelength solved).
     std::optional<SpectralNodes> nodes_;
     std::optional<SampleCrystal> node_samples_;
+    std::optional<NodeColour> node_colour_;  // with colour weights, without a plate or optical activity
 };
 
 }  // namespace petroscope::detail

@@ -19,6 +19,8 @@ constexpr double kSmoothness = 2.0;
 // most sensitive; beyond them every wavelength is solved (a thick slab of a strongly dispersive crystal).
 constexpr double kPhaseTolerance_rad = 1e-3;
 constexpr double kFieldTolerance = 1e-4;
+// The product of two amplitudes each within kFieldTolerance (NodeColour) is within about twice that.
+constexpr double kProductTolerance = 2.0 * kFieldTolerance;
 // An optically active crystal's p = b₀b₁ ≥ 0 enters through Ω = √((δ/2)² + p) ≥ √p: an error e in p moves Ω by
 // at most e/(2√p), and by at most √e whatever p. The tolerance on p keeps Ω within kPhaseTolerance_rad.
 double coupling_product_tolerance(const NodeValues& product) {
@@ -28,6 +30,16 @@ double coupling_product_tolerance(const NodeValues& product) {
 
 // One component of an active crystal's node fields, w_s·(s part) + w_p·(p part): F₀, F₁, G₀, G₁
 // (spectral_nodes.hpp, ActiveNodeFields) from mode_field (s fast, s slow, p fast, p slow) and coupled_field.
+// This side's ρ̂ and ŝ = ẑ × ρ̂ in the lab (conoscope_kernel.hpp: side 1 has ρ̂ times `reversal`).
+struct SideFrame {
+    double rho_x, rho_y, s_x, s_y;
+};
+SideFrame side_frame(const KernelScratch& scratch, int side) {
+    const double sign = side == 0 ? 1.0 : scratch.reversal[0];
+    const double rho_x = sign * scratch.rho_x[0], rho_y = sign * scratch.rho_y[0];
+    return {rho_x, rho_y, -rho_y, rho_x};
+}
+
 std::array<NodeValues, 4> projected_active_fields(const std::array<NodeValues, 4>& fields, const std::array<NodeValues, 4>& coupled, double w_s,
                                            double w_p) {
     std::array<NodeValues, 4> component{};
@@ -76,7 +88,7 @@ bool ConoscopeEvaluator::smooth_over_spectrum(const KernelScratch& scratch) cons
     return true;
 }
 
-bool ConoscopeEvaluator::interpolated_pair(const KernelScratch& scratch, double* out_plus, double* out_minus) const {
+bool ConoscopeEvaluator::interpolated_pair(const KernelScratch& scratch, double* out_plus, double* out_minus, PairColour* colour) const {
     std::array<std::array<NodeValues, 4>, 2> side_fields, side_coupled;
     std::array<NodeValues, 2> side_phase, side_product;
     const bool active = !gyration_lab_.empty();
@@ -103,52 +115,71 @@ bool ConoscopeEvaluator::interpolated_pair(const KernelScratch& scratch, double*
                                                                       side_product[side], side == 0 ? out_plus : out_minus);
         return true;
     }
+    if (colour != nullptr && colour_from_nodes(scratch, side_fields, side_phase, *colour)) return true;
     for (int side = 0; side < 2; ++side) {
         const std::array<NodeValues, 4>& fields = side_fields[side];
-        const NodeValues& phase = side_phase[side];
-        // This side's ρ̂ and ŝ = ẑ × ρ̂ (conoscope_kernel.hpp: side 1 has ρ̂ times `reversal`).
-        const double sign = side == 0 ? 1.0 : scratch.reversal[0];
-        const double rho_x = sign * scratch.rho_x[0], rho_y = sign * scratch.rho_y[0];
-        const double s_x = -rho_y, s_y = rho_x;
         double* out = side == 0 ? out_plus : out_minus;
-        if (!plate_jones_lab_.empty()) {
-            // The fields in the lab frame, E = s ŝ + p ρ̂, where the plate's analyzers are.
-            std::array<NodeValues, 4> lab_fields{};
-            for (std::size_t mode = 0; mode < 2; ++mode) {
-                for (std::size_t j = 0; j < kSpectralNodes; ++j) {
-                    lab_fields[mode][j] = fields[mode][j] * s_x + fields[2 + mode][j] * rho_x;
-                    lab_fields[2 + mode][j] = fields[mode][j] * s_y + fields[2 + mode][j] * rho_y;
-                }
-            }
-            PlateAnalyzers analyzers{polars_.analyzer_in ? 1 : 2, {}};
-            for (std::size_t k = 0; k < 2; ++k) {
-                for (std::size_t c = 0; c < 4; ++c) analyzers.lab[k][c] = spectral_samples_.plate_analyzer[k][c].data();
-            }
-            interpolated_transmission(*nodes_, lab_fields, phase, analyzers, out);
-        } else if (polars_.analyzer_in) {
-            // The amplitude of each mode behind the analyzer: a·(s ŝ + p ρ̂).
-            const double a_s = polars_.analyzer.x() * s_x + polars_.analyzer.y() * s_y;
-            const double a_p = polars_.analyzer.x() * rho_x + polars_.analyzer.y() * rho_y;
-            std::array<NodeValues, 4> amplitudes{};
-            for (std::size_t j = 0; j < kSpectralNodes; ++j) {
-                amplitudes[0][j] = a_s * fields[0][j] + a_p * fields[2][j];
-                amplitudes[1][j] = a_s * fields[1][j] + a_p * fields[3][j];
-            }
-            interpolated_transmission(*nodes_, amplitudes, 1, phase, out);
-        } else {
-            interpolated_transmission(*nodes_, fields, 2, phase, out);
+        if (plate_jones_lab_.empty()) {
+            int pairs = 1;
+            const std::array<NodeValues, 4> amplitudes = analyzed_node_amplitudes(scratch, side, fields, pairs);
+            interpolated_transmission(*nodes_, amplitudes, pairs, side_phase[side], out);
+            continue;
         }
+        // The fields in the lab frame, E = s ŝ + p ρ̂, where the plate's analyzers are.
+        const SideFrame frame = side_frame(scratch, side);
+        std::array<NodeValues, 4> lab_fields{};
+        for (std::size_t mode = 0; mode < 2; ++mode) {
+            for (std::size_t j = 0; j < kSpectralNodes; ++j) {
+                lab_fields[mode][j] = fields[mode][j] * frame.s_x + fields[2 + mode][j] * frame.rho_x;
+                lab_fields[2 + mode][j] = fields[mode][j] * frame.s_y + fields[2 + mode][j] * frame.rho_y;
+            }
+        }
+        PlateAnalyzers analyzers{polars_.analyzer_in ? 1 : 2, {}};
+        for (std::size_t k = 0; k < 2; ++k) {
+            for (std::size_t c = 0; c < 4; ++c) analyzers.lab[k][c] = spectral_samples_.plate_analyzer[k][c].data();
+        }
+        interpolated_transmission(*nodes_, lab_fields, side_phase[side], analyzers, out);
     }
+    return true;
+}
+
+std::array<NodeValues, 4> ConoscopeEvaluator::analyzed_node_amplitudes(const KernelScratch& scratch, int side, const std::array<NodeValues, 4>& fields,
+                                                                       int& pairs) const {
+    if (!polars_.analyzer_in) {
+        pairs = 2;
+        return fields;
+    }
+    // The amplitude of each mode behind the analyzer: a·(s ŝ + p ρ̂).
+    const SideFrame frame = side_frame(scratch, side);
+    const double a_s = polars_.analyzer.x() * frame.s_x + polars_.analyzer.y() * frame.s_y;
+    const double a_p = polars_.analyzer.x() * frame.rho_x + polars_.analyzer.y() * frame.rho_y;
+    std::array<NodeValues, 4> amplitudes{};
+    for (std::size_t j = 0; j < kSpectralNodes; ++j) {
+        amplitudes[0][j] = a_s * fields[0][j] + a_p * fields[2][j];
+        amplitudes[1][j] = a_s * fields[1][j] + a_p * fields[3][j];
+    }
+    pairs = 1;
+    return amplitudes;
+}
+
+bool ConoscopeEvaluator::colour_from_nodes(const KernelScratch& scratch, const std::array<std::array<NodeValues, 4>, 2>& side_fields,
+                                           const std::array<NodeValues, 2>& side_phase, PairColour& colour) const {
+    if (!node_colour_) return false;
+    for (int side = 0; side < 2; ++side) {
+        int pairs = 1;
+        const std::array<NodeValues, 4> amplitudes = analyzed_node_amplitudes(scratch, side, side_fields[side], pairs);
+        const std::optional<Eigen::Vector3d> xyz = node_colour_->xyz(*nodes_, amplitudes, pairs, side_phase[side], kProductTolerance);
+        if (!xyz) return false;
+        colour.xyz[static_cast<std::size_t>(side)] = *xyz;
+    }
+    colour.written = true;
     return true;
 }
 
 void ConoscopeEvaluator::active_interpolated_side(const KernelScratch& scratch, int side, const std::array<NodeValues, 4>& fields,
                                                   const std::array<NodeValues, 4>& coupled, const NodeValues& phase,
                                                   const NodeValues& product, double* out) const {
-    // This side's ρ̂ and ŝ = ẑ × ρ̂, as in interpolated_pair.
-    const double sign = side == 0 ? 1.0 : scratch.reversal[0];
-    const double rho_x = sign * scratch.rho_x[0], rho_y = sign * scratch.rho_y[0];
-    const double s_x = -rho_y, s_y = rho_x;
+    const auto [rho_x, rho_y, s_x, s_y] = side_frame(scratch, side);
     ActiveNodeFields active;
     active.coupling_product = product;
     if (!plate_jones_lab_.empty()) {

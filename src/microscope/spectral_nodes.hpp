@@ -46,6 +46,17 @@ private:
 /// Values of one quantity at the nodes.
 using NodeValues = std::array<double, kSpectralNodes>;
 
+/// The interpolant Σⱼ ℓⱼ(w)·values[j] at grid wavelength w (basis and stride of SpectralNodes), as two partial sums
+/// over even and odd j: half the chain of dependent additions, for loops that vectorise over w.
+inline double interpolate_at(const double* basis, std::size_t stride, std::size_t w, const NodeValues& values) {
+    double even = 0.0, odd = 0.0;
+    for (std::size_t j = 0; j < kSpectralNodes; j += 2) {
+        even += basis[j * stride + w] * values[j];
+        odd += basis[(j + 1) * stride + w] * values[j + 1];
+    }
+    return even + odd;
+}
+
 /// Transmission at every grid wavelength behind real analyzers (no plate): `pairs` amplitude pairs (c₀, c₁)
 /// per analyzed component (one behind the analyzer, two without it), interpolated with δ, each giving
 /// |c₀e^{iφ₀} + c₁e^{iφ₁}|² (interference.hpp). amplitudes[2k], amplitudes[2k + 1]: pair k.

@@ -4,6 +4,7 @@
 // axes, plates, and polars in any position.
 #include "conoscope_evaluator.hpp"
 #include "conoscope_fixtures.hpp"
+#include "node_colour.hpp"
 
 #include "petroscope/microscope/polarizing_microscope.hpp"
 
@@ -200,6 +201,38 @@ TEST(ConoscopeSpectrum, NodesInterpolatePolynomialsInWavenumberExactly) {
     EXPECT_GT(nodes.tail(pole_values), 1e-3);
     EXPECT_NEAR(nodes.wavelengths_nm().front(), 380.0, 1e-9);
     EXPECT_NEAR(nodes.wavelengths_nm().back(), 780.0, 1e-9);
+}
+
+
+// The colour straight from the nodes (NodeColour) against the interpolated spectrum integrated wavelength by
+// wavelength: the same sum where the amplitudes are cubic in σ, so that their product (degree 6) is interpolated
+// exactly. A phase of up to 4e3 rad puts hundreds of fringes in the spectrum. Amplitudes with a pole near the
+// visible range give a product too rough to interpolate, which is refused.
+TEST(ConoscopeSpectrum, ColourFromNodesEqualsTheIntegratedInterpolatedSpectrum) {
+    const std::vector<double> grid = WavelengthGrid{380.0, 780.0, 5.0}.wavelengths_nm();
+    const detail::SpectralNodes nodes(grid);
+    const SpectralIntegrator integrator(grid, load_cie_1931_observer(), load_light_source("D65"));
+    const detail::NodeColour colour(nodes, integrator.weights());
+    std::array<detail::NodeValues, 4> amplitudes{}, poles{};
+    detail::NodeValues phase{};
+    for (std::size_t j = 0; j < detail::kSpectralNodes; ++j) {
+        const double x = 1000.0 / nodes.wavelengths_nm()[j];  // σ in µm⁻¹
+        for (std::size_t k = 0; k < 4; ++k) {
+            const double shift = 0.3 * static_cast<double>(k);
+            amplitudes[k][j] = (k % 2 == 0 ? 0.6 : -0.5) + (0.2 - 0.1 * shift) * x - 0.05 * x * x + 0.01 * shift * x * x * x;
+            poles[k][j] = 0.1 / (nodes.wavelengths_nm()[j] / 1000.0 - 0.33);
+        }
+        phase[j] = 1600.0 * x + 40.0 * x * x;
+    }
+    std::vector<double> spectrum(grid.size());
+    for (const int pairs : {1, 2}) {
+        detail::interpolated_transmission(nodes, amplitudes, pairs, phase, spectrum.data());
+        const Eigen::Vector3d expected = integrator.integrate(spectrum);
+        const std::optional<Eigen::Vector3d> from_nodes = colour.xyz(nodes, amplitudes, pairs, phase, 1.0);
+        ASSERT_TRUE(from_nodes.has_value()) << pairs << " pairs";
+        EXPECT_LT((*from_nodes - expected).cwiseAbs().maxCoeff(), 1e-12 * expected.maxCoeff()) << pairs << " pairs";
+        EXPECT_FALSE(colour.xyz(nodes, poles, pairs, phase, 1e-4).has_value()) << pairs << " pairs";
+    }
 }
 
 }  // namespace

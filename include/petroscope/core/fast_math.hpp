@@ -7,13 +7,46 @@
 
 namespace petroscope {
 
-/// c₀ + c₁t + … + c_{N−1}t^{N−1} by Horner's rule, unrolled so that loops calling it vectorise.
+namespace fast_math_detail {
+
+/// t^K for K a power of two, by squaring.
+template <std::size_t K>
+inline double power_of_two_power(double t) {
+    if constexpr (K == 1) {
+        return t;
+    } else {
+        const double half = power_of_two_power<K / 2>(t);
+        return half * half;
+    }
+}
+
+/// The largest power of two below n (n ≥ 2).
+constexpr std::size_t split_below(std::size_t n) {
+    std::size_t power = 1;
+    while (2 * power < n) power *= 2;
+    return power;
+}
+
+/// c_B + c_{B+1}t + … + c_{E−1}t^{E−1−B} by Estrin's scheme: the lower part plus t^h times the upper part, h the
+/// largest power of two below the length (Knuth, The Art of Computer Programming 2, 3rd ed., 1997, §4.6.4).
+template <std::size_t Begin, std::size_t End, std::size_t N>
+inline double polynomial_part(const std::array<double, N>& coefficients, double t) {
+    if constexpr (End - Begin == 1) {
+        return coefficients[Begin];
+    } else {
+        constexpr std::size_t half = split_below(End - Begin);
+        return polynomial_part<Begin, Begin + half>(coefficients, t) +
+               power_of_two_power<half>(t) * polynomial_part<Begin + half, End>(coefficients, t);
+    }
+}
+
+}  // namespace fast_math_detail
+
+/// c₀ + c₁t + … + c_{N−1}t^{N−1}. Estrin's scheme: its chain of dependent operations grows like log N, where
+/// Horner's grows like N, so vectorised loops that call it are not held up by the latency of one long chain.
 template <std::size_t N>
 inline double polynomial(const std::array<double, N>& coefficients, double t) {
-    double sum = coefficients[N - 1];
-#pragma GCC unroll 32
-    for (std::size_t k = N - 1; k > 0; --k) sum = sum * t + coefficients[k - 1];
-    return sum;
+    return fast_math_detail::polynomial_part<0, N>(coefficients, t);
 }
 
 namespace fast_math_detail {
