@@ -149,10 +149,15 @@ void solve_roots(const SampleCrystal& crystal, KernelScratch& scratch) {
 
 // The vibration and field vectors ψ of one side and sheet from its roots, in the side's plane-of-incidence
 // frame; sheet_failed also marks samples near a binormal or with a non-finite root.
-template <int Sheet, int Side>
+template <bool Uniaxial, int Sheet, int Side>
 void solve_vibrations(const SampleCrystal& crystal, KernelScratch& scratch) {
     constexpr double direction = Side == 0 ? 1.0 : -1.0;
     const CrystalArrays c(crystal);
+    // A uniaxial crystal's binormals are its optic axis, b₂ = σb₁ (σ = crystal.uniaxial_orientation), so v₂ = σv₁ and
+    // of S and T below one is 2|v₁|·v₁ and the other vanishes: this sheet's D is v₁ where its own combination is the
+    // surviving one (T for the fast sheet when σ < 0, S for the slow one when σ > 0), N × v₁ otherwise. The scale of
+    // D is free (the fields leaving the slab do not depend on it).
+    const bool uniaxial_own = (Sheet == 0) == (crystal.uniaxial_orientation < 0.0);
     const double *xi_x0 = scratch.xi_x.data(), *xi_y0 = scratch.xi_y.data();
     const double *rho_x0 = scratch.rho_x.data(), *rho_y0 = scratch.rho_y.data(), *reversal = scratch.reversal.data();
     const double* q_in = scratch.q[Side][Sheet].data();
@@ -176,21 +181,28 @@ void solve_vibrations(const SampleCrystal& crystal, KernelScratch& scratch) {
         const double nx = xi_x, ny = xi_y, nz = q;
         const double n2 = xi2 + q * q;
         const double nb1 = xi_x * c.b1x[i] + xi_y * c.b1y[i] + q * c.b1z[i];
-        const double nb2 = xi_x * c.b2x[i] + xi_y * c.b2y[i] + q * c.b2z[i];
         const double v1x = n2 * c.b1x[i] - nb1 * nx, v1y = n2 * c.b1y[i] - nb1 * ny, v1z = n2 * c.b1z[i] - nb1 * nz;
-        const double v2x = n2 * c.b2x[i] - nb2 * nx, v2y = n2 * c.b2y[i] - nb2 * ny, v2z = n2 * c.b2z[i] - nb2 * nz;
         const double r1 = std::sqrt(v1x * v1x + v1y * v1y + v1z * v1z);
-        const double r2 = std::sqrt(v2x * v2x + v2y * v2y + v2z * v2z);
-        const double sx = r2 * v1x + r1 * v2x, sy = r2 * v1y + r1 * v2y, sz = r2 * v1z + r1 * v2z;
-        const double tx = r2 * v1x - r1 * v2x, ty = r2 * v1y - r1 * v2y, tz = r2 * v1z - r1 * v2z;
-        const double s_norm2 = sx * sx + sy * sy + sz * sz;
-        const double t_norm2 = tx * tx + ty * ty + tz * tz;
-        const bool own_longer = Sheet == 0 ? t_norm2 >= s_norm2 : s_norm2 >= t_norm2;
-        const double ox = Sheet == 0 ? tx : sx, oy = Sheet == 0 ? ty : sy, oz = Sheet == 0 ? tz : sz;
-        const double ax = Sheet == 0 ? sx : tx, ay = Sheet == 0 ? sy : ty, az = Sheet == 0 ? sz : tz;
-        const double dx = own_longer ? ox : ny * az - nz * ay;
-        const double dy = own_longer ? oy : nz * ax - nx * az;
-        const double dz = own_longer ? oz : nx * ay - ny * ax;
+        double r2 = r1, dx, dy, dz;
+        if constexpr (Uniaxial) {
+            dx = uniaxial_own ? v1x : ny * v1z - nz * v1y;
+            dy = uniaxial_own ? v1y : nz * v1x - nx * v1z;
+            dz = uniaxial_own ? v1z : nx * v1y - ny * v1x;
+        } else {
+            const double nb2 = xi_x * c.b2x[i] + xi_y * c.b2y[i] + q * c.b2z[i];
+            const double v2x = n2 * c.b2x[i] - nb2 * nx, v2y = n2 * c.b2y[i] - nb2 * ny, v2z = n2 * c.b2z[i] - nb2 * nz;
+            r2 = std::sqrt(v2x * v2x + v2y * v2y + v2z * v2z);
+            const double sx = r2 * v1x + r1 * v2x, sy = r2 * v1y + r1 * v2y, sz = r2 * v1z + r1 * v2z;
+            const double tx = r2 * v1x - r1 * v2x, ty = r2 * v1y - r1 * v2y, tz = r2 * v1z - r1 * v2z;
+            const double s_norm2 = sx * sx + sy * sy + sz * sz;
+            const double t_norm2 = tx * tx + ty * ty + tz * tz;
+            const bool own_longer = Sheet == 0 ? t_norm2 >= s_norm2 : s_norm2 >= t_norm2;
+            const double ox = Sheet == 0 ? tx : sx, oy = Sheet == 0 ? ty : sy, oz = Sheet == 0 ? tz : sz;
+            const double ax = Sheet == 0 ? sx : tx, ay = Sheet == 0 ? sy : ty, az = Sheet == 0 ? sz : tz;
+            dx = own_longer ? ox : ny * az - nz * ay;
+            dy = own_longer ? oy : nz * ax - nx * az;
+            dz = own_longer ? oz : nx * ay - ny * ax;
+        }
         // E = η·D, H = N × E.
         const double ex = c.eta_xx[i] * dx + c.eta_xy[i] * dy + c.eta_xz[i] * dz;
         const double ey = c.eta_xy[i] * dx + c.eta_yy[i] * dy + c.eta_yz[i] * dz;
@@ -408,8 +420,8 @@ void solve_side(const SampleCrystal& crystal, KernelScratch& scratch, bool warm)
     }
     solve_roots<Uniaxial, 0, Side>(crystal, scratch);
     solve_roots<Uniaxial, 1, Side>(crystal, scratch);
-    solve_vibrations<0, Side>(crystal, scratch);
-    solve_vibrations<1, Side>(crystal, scratch);
+    solve_vibrations<Uniaxial, 0, Side>(crystal, scratch);
+    solve_vibrations<Uniaxial, 1, Side>(crystal, scratch);
 }
 
 template <KernelOutput Output, bool Plate, bool Active = false>

@@ -28,9 +28,15 @@ public:
                                        const NodeValues& phase_difference, double product_tolerance) const;
 
 private:
-    using NodeVector = Eigen::Matrix<double, kSpectralNodeCount, 1>;
-    // The three channels' matrices Σ_w W(w)·ℓᵢ(w)·ℓⱼ(w) (ℓ the nodes' basis) stacked: rows 8c to 8c + 7 are channel c.
-    Eigen::Matrix<double, 3 * kSpectralNodeCount, kSpectralNodeCount> smooth_form_;
+    /// Σ_w W(w)·f(w)·g(w) for the interpolants f, g of the node values `left`, `right`: leftᵀ·M_c·right per channel.
+    Eigen::Vector3d weighted_product(const NodeValues& left, const NodeValues& right) const;
+    /// The fringe term Σ_w W(w)·P(w)·sin²(δ(w)/2) wavelength by wavelength.
+    Eigen::Vector3d fringe_sum(const SpectralNodes& nodes, const NodeValues& product, const NodeValues& phase_difference) const;
+
+    static constexpr std::size_t kFormRows = 3 * kSpectralNodes;
+    // The three channels' matrices M_c = Σ_w W_c(w)·ℓᵢ(w)·ℓⱼ(w) (ℓ the nodes' basis), column j after column j − 1,
+    // each column the channels' rows one after the other: element [j·kFormRows + c·8 + i] is M_c(i, j).
+    std::array<double, kFormRows * kSpectralNodes> form_{};
     std::array<std::vector<double>, 3> channel_weights_;  // per channel: W(w)
 };
 

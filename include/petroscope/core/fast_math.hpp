@@ -51,28 +51,40 @@ inline double polynomial(const std::array<double, N>& coefficients, double t) {
 
 namespace fast_math_detail {
 
-/// x = kπ + r with |r| ≤ π/2. π is split in two parts (Cody & Waite 1980; the split of fdlibm's
-/// __ieee754_rem_pio2).
+/// x = k·π/D + r with |r| ≤ π/(2D), for D = 1 or 2. π/D is split in two parts (Cody & Waite 1980; the split of
+/// fdlibm's __ieee754_rem_pio2), its first 33 bits so that k·high is exact for |k| < 2²⁰.
 struct Reduction {
     double r, k;
 };
-inline Reduction reduce_by_pi(double x) {
-    constexpr double inverse_pi = 0.318309886183790671538;
-    constexpr double pi_high = 3.14159265346825122833e+00;   // first 33 bits of π: k·pi_high is exact
-    constexpr double pi_low = 1.21542010130123844986e-10;    // π − pi_high
-    // Round to the nearest integer by adding and removing 1.5·2⁵² (exact for |x/π| < 2⁵¹; vectorises,
+template <int Divisor>
+inline Reduction reduce_by_pi_over(double x) {
+    static_assert(Divisor == 1 || Divisor == 2);
+    constexpr double inverse = Divisor * 0.318309886183790671538;
+    constexpr double high = 3.14159265346825122833e+00 / Divisor;  // halving is exact
+    constexpr double low = 1.21542010130123844986e-10 / Divisor;   // π/D − high
+    // Round to the nearest integer by adding and removing 1.5·2⁵² (exact for |k| < 2⁵¹; vectorises,
     // unlike nearbyint under strict floating-point semantics).
     constexpr double round_shift = 6755399441055744.0;
-    const double k = (x * inverse_pi + round_shift) - round_shift;
-    return {(x - k * pi_high) - k * pi_low, k};
+    const double k = (x * inverse + round_shift) - round_shift;
+    return {(x - k * high) - k * low, k};
 }
 
-/// sin r for |r| ≤ π/2: the Taylor series to degree 23 (truncation < 1e-20), r·Σ (−1)ⁿ r²ⁿ/(2n+1)!.
+/// The Taylor coefficients of sin r / r in r², (−1)ⁿ/(2n+1)!.
+constexpr std::array<double, 12> kSineTaylor{1.0, -1.0 / 6.0, 1.0 / 120.0, -1.0 / 5040.0, 1.0 / 362880.0, -1.0 / 39916800.0,
+                                             1.0 / 6227020800.0, -1.0 / 1307674368000.0, 1.0 / 355687428096000.0,
+                                             -1.0 / 121645100408832000.0, 1.0 / 51090942171709440000.0,
+                                             -1.0 / 25852016738884976640000.0};
+
+/// sin r by the first `Terms` terms of its Taylor series: to degree 23 (all 12, truncation < 1e-20 for |r| ≤ π/2)
+/// or degree 15 (8, truncation < 5e-17 for |r| ≤ π/4).
+template <std::size_t Terms = 12>
 inline double sine_series(double r) {
-    constexpr std::array<double, 12> coefficients{1.0, -1.0 / 6.0, 1.0 / 120.0, -1.0 / 5040.0, 1.0 / 362880.0, -1.0 / 39916800.0,
-                                                  1.0 / 6227020800.0, -1.0 / 1307674368000.0, 1.0 / 355687428096000.0,
-                                                  -1.0 / 121645100408832000.0, 1.0 / 51090942171709440000.0,
-                                                  -1.0 / 25852016738884976640000.0};
+    static_assert(Terms <= kSineTaylor.size());
+    constexpr auto coefficients = [] {
+        std::array<double, Terms> leading{};
+        for (std::size_t n = 0; n < Terms; ++n) leading[n] = kSineTaylor[n];
+        return leading;
+    }();
     return r * polynomial(coefficients, r * r);
 }
 
@@ -85,20 +97,26 @@ inline double cosine_series(double r) {
     return polynomial(coefficients, r * r);
 }
 
+/// k mod 2 (0 or 1) for an integral k, without a branch.
+inline double parity(double k) { return k - 2.0 * std::floor(0.5 * k); }
+
 /// (−1)ᵏ for an integral k, without a branch.
-inline double parity_sign(double k) { return 1.0 - 2.0 * (k - 2.0 * std::floor(0.5 * k)); }
+inline double parity_sign(double k) { return 1.0 - 2.0 * parity(k); }
 
 }  // namespace fast_math_detail
 
-/// sin²(x) for |x| < 2²⁰·π. sin² has period π, so no quadrant bookkeeping is needed.
+/// sin²(x) for |x| < 2¹⁹·π: with x = kπ/2 + r, |r| ≤ π/4, it is sin²r for even k and cos²r = 1 − sin²r for odd k, so
+/// a shorter series than sine's serves.
 inline double sin_squared(double x) {
-    const double sine = fast_math_detail::sine_series(fast_math_detail::reduce_by_pi(x).r);
-    return sine * sine;
+    const auto [r, k] = fast_math_detail::reduce_by_pi_over<2>(x);
+    const double sine = fast_math_detail::sine_series<8>(r);
+    const double square = sine * sine;
+    return square + fast_math_detail::parity(k) * (1.0 - 2.0 * square);
 }
 
 /// sin(x) for |x| < 2²⁰·π: sin(kπ + r) = (−1)ᵏ sin r.
 inline double sine(double x) {
-    const auto [r, k] = fast_math_detail::reduce_by_pi(x);
+    const auto [r, k] = fast_math_detail::reduce_by_pi_over<1>(x);
     return fast_math_detail::parity_sign(k) * fast_math_detail::sine_series(r);
 }
 
@@ -107,7 +125,7 @@ struct SineCosine {
     double sine, cosine;
 };
 inline SineCosine sine_cosine(double x) {
-    const auto [r, k] = fast_math_detail::reduce_by_pi(x);
+    const auto [r, k] = fast_math_detail::reduce_by_pi_over<1>(x);
     const double sign = fast_math_detail::parity_sign(k);
     return {sign * fast_math_detail::sine_series(r), sign * fast_math_detail::cosine_series(r)};
 }
