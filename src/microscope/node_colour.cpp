@@ -85,13 +85,15 @@ Eigen::Vector3d NodeColour::fringe_sum(const SpectralNodes& nodes, const NodeVal
     // interpolation, then the sine, two loops whose iterations are short enough to overlap in the processor.
     const double* basis = nodes.basis();
     const std::size_t stride = nodes.padded_grid_size(), count = nodes.grid_size();
+    NodeValues half_phase;
+    for (std::size_t j = 0; j < kSpectralNodes; ++j) half_phase[j] = 0.5 * phase_difference[j];
     double x = 0.0, y = 0.0, z = 0.0;
     for (std::size_t begin = 0; begin < count; begin += kChunk) {
         const std::size_t length = std::min(kChunk, count - begin);
         std::array<double, kChunk> half_delta, p;
 #pragma omp simd
         for (std::size_t i = 0; i < length; ++i) {
-            half_delta[i] = 0.5 * interpolate_at(basis, stride, begin + i, phase_difference);
+            half_delta[i] = interpolate_at(basis, stride, begin + i, half_phase);
             p[i] = interpolate_at(basis, stride, begin + i, product);
         }
         const double *w_x = channel_weights_[0].data() + begin, *w_y = channel_weights_[1].data() + begin;

@@ -52,17 +52,6 @@ SpectralNodes::SpectralNodes(const std::vector<double>& grid_nm)
     }
 }
 
-double SpectralNodes::tail(const std::array<double, kSpectralNodes>& values) const {
-    double last_but_one = 0.0, last = 0.0;
-    const double *row_6 = tail_rows_[0].data(), *row_7 = tail_rows_[1].data(), *value = values.data();
-#pragma omp simd reduction(+ : last_but_one, last)
-    for (std::size_t j = 0; j < kSpectralNodes; ++j) {
-        last_but_one += row_6[j] * value[j];
-        last += row_7[j] * value[j];
-    }
-    return std::abs(last_but_one) + std::abs(last);
-}
-
 namespace {
 
 // Interpolates δ and `Quantities` (2 or 4) node quantities to every grid wavelength, in vector lanes over

@@ -7,6 +7,7 @@
 #include "petroscope/microscope/conoscope.hpp"
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -34,7 +35,14 @@ public:
     /// Chebyshev coefficients. For a function analytic in a Bernstein ellipse of parameter ρ they fall like
     /// ρ⁻ᵏ and the error of the interpolant is of the order of the first one left out, |c₈| < |c₇|/ρ
     /// (Trefethen, Approximation Theory and Approximation Practice, 2013, Theorems 4.2 and 8.2).
-    double tail(const std::array<double, kSpectralNodes>& values) const;
+    double tail(const std::array<double, kSpectralNodes>& values) const {
+        double last_but_one = 0.0, last = 0.0;
+        for (std::size_t j = 0; j < kSpectralNodes; ++j) {
+            last_but_one += tail_rows_[0][j] * values[j];
+            last += tail_rows_[1][j] * values[j];
+        }
+        return std::abs(last_but_one) + std::abs(last);
+    }
 
 private:
     std::array<double, kSpectralNodes> nodes_nm_{};
