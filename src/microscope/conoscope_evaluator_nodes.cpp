@@ -28,8 +28,6 @@ double coupling_product_tolerance(const NodeValues& product) {
     return std::max(kPhaseTolerance_rad * kPhaseTolerance_rad, 2.0 * kPhaseTolerance_rad * std::sqrt(std::max(smallest, 0.0)));
 }
 
-// One component of an active crystal's node fields, w_s·(s part) + w_p·(p part): F₀, F₁, G₀, G₁
-// (spectral_nodes.hpp, ActiveNodeFields) from mode_field (s fast, s slow, p fast, p slow) and coupled_field.
 // This side's ρ̂ and ŝ = ẑ × ρ̂ in the lab (conoscope_kernel.hpp: side 1 has ρ̂ times `reversal`).
 struct SideFrame {
     double rho_x, rho_y, s_x, s_y;
@@ -40,6 +38,8 @@ SideFrame side_frame(const KernelScratch& scratch, int side) {
     return {rho_x, rho_y, -rho_y, rho_x};
 }
 
+// One component of an active crystal's node fields, w_s·(s part) + w_p·(p part): F₀, F₁, G₀, G₁
+// (spectral_nodes.hpp, ActiveNodeFields) from mode_field (s fast, s slow, p fast, p slow) and coupled_field.
 std::array<NodeValues, 4> projected_active_fields(const std::array<NodeValues, 4>& fields, const std::array<NodeValues, 4>& coupled, double w_s,
                                            double w_p) {
     std::array<NodeValues, 4> component{};
