@@ -375,17 +375,18 @@ void side_transmission(const SampleCrystal& crystal, const PolarizerPair& polars
             } else {
                 out[i] = rs * rs + rp * rp + is * is + ip * ip;
             }
+        } else if constexpr (Output == KernelOutput::fields) {
+            // The field each mode leaves with, in (ŝ, ρ̂), and δ; the transmission's slot only tells whether they are finite.
+            field_s0[i] = e00 * t0;
+            field_s1[i] = e01 * t1;
+            field_p0[i] = e10 * t0;
+            field_p1[i] = e11 * t1;
+            phase[i] = k0_thickness[i] * (qf[i] - qs[i]);
+            out[i] = field_s0[i] + field_s1[i] + field_p0[i] + field_p1[i] + phase[i];
         } else {
             const double sin2 = sin_squared(0.5 * k0_thickness[i] * (qf[i] - qs[i]));
             // The field each mode leaves with, in (ŝ, ρ̂).
             const double s_fast = e00 * t0, s_slow = e01 * t1, p_fast = e10 * t0, p_slow = e11 * t1;
-            if constexpr (Output == KernelOutput::fields) {
-                field_s0[i] = s_fast;
-                field_s1[i] = s_slow;
-                field_p0[i] = p_fast;
-                field_p1[i] = p_slow;
-                phase[i] = k0_thickness[i] * (qf[i] - qs[i]);
-            }
             if constexpr (Plate) {
                 const double cos_delta = 1.0 - 2.0 * sin2, sin_delta = sine(k0_thickness[i] * (qf[i] - qs[i]));
                 const auto analyzed = [&](double re_x, double re_y, double im_x, double im_y) {

@@ -99,16 +99,17 @@ struct KernelScratch {
 /// Sets the geometry of samples first … first + count − 1 to the pair (ξ, −ξ).
 void set_sample_directions(KernelScratch& scratch, std::size_t first, std::size_t count, const Eigen::Vector2d& xi);
 
-/// What run_kernel leaves in the scratch besides the transmission.
+/// What run_kernel leaves in the scratch.
 enum class KernelOutput {
-    transmission,  // only the transmission
-    terms,         // also scratch.mean and scratch.modulation (no plate), and with optical activity
+    transmission,  // the transmission
+    terms,         // the transmission, scratch.mean and scratch.modulation (no plate), and with optical activity
                    // scratch.sine_modulation and 2W in scratch.phase_difference
-    fields,        // also scratch.mode_field and scratch.phase_difference, and with optical activity
-                   // scratch.coupled_field and scratch.coupling_product (no plate)
+    fields,        // scratch.mode_field and scratch.phase_difference, with optical activity also scratch.coupled_field,
+                   // scratch.coupling_product and the transmission (no plate); for an inactive crystal the
+                   // transmission's slot holds a number that is finite exactly where the fields and the phase are
 };
 
-/// Transmission of every sample into scratch.transmission[side]. With `warm` (allowed when
+/// Transmission of every sample into scratch.transmission[side] (but see KernelOutput::fields). With `warm` (allowed when
 /// scratch.warm_ready), each sample's Newton iterations start from the previous run's roots moved along
 /// ∂q/∂ξ: the samples must be the same wavelengths as then, at a nearby ξ. `output` says what else is
 /// kept. Returns whether any sample was flagged in scratch.failed.
