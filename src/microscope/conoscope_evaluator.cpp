@@ -107,7 +107,7 @@ ConoscopeEvaluator::ConoscopeEvaluator(const ConoscopeSettings& settings, const 
         const std::vector<BinormalFrame> node_frames = frames_for(settings, principal_n, nodes_->wavelengths_nm());
         node_samples_ = samples_of(node_frames, k0_thickness_for(nodes_->wavelengths_nm(), settings.thickness_um), settings.surround_n, 1);
         if (settings.gyration) set_gyration(*node_samples_, gyration_for(settings, nodes_->wavelengths_nm()));
-        if (colour_weights != nullptr && !settings.gyration && !settings.plate) node_colour_.emplace(*nodes_, *colour_weights);
+        if (colour_weights != nullptr && !settings.plate) node_colour_.emplace(*nodes_, *colour_weights);
     }
     if (settings.plate) {
         for (const double wavelength_nm : settings.wavelengths_nm) plate_jones_lab_.push_back(plate_jones_lab(*settings.plate, wavelength_nm, false));

@@ -44,7 +44,7 @@ public:
     /// call with this scratch was for a neighbouring ξ, whose roots can start the iterations. Interpolated
     /// from the spectral nodes unless the settings ask for the exact spectrum or ξ is too near an optic axis
     /// for the interpolated spectrum (then every wavelength is solved). With `colour` and an evaluator made with
-    /// colour weights, a point interpolated without a plate or optical activity gets its colour from the nodes
+    /// colour weights, a point interpolated without a plate gets its colour from the nodes
     /// (NodeColour) and `colour->written` says so.
     void spectral_pair(const Eigen::Vector2d& xi, SpectralScratch& scratch, bool continues_row, double* out_plus,
                        double* out_minus, PairColour* colour = nullptr) const;
@@ -85,10 +85,16 @@ private:
     /// a plate, as for interpolated_transmission; `pairs` says how many.
     std::array<NodeValues, 4> analyzed_node_amplitudes(const KernelScratch& scratch, int side, const std::array<NodeValues, 4>& fields,
                                                        int& pairs) const;
-    /// interpolated_pair's transmission of one side of an optically active crystal from its node values.
-    void active_interpolated_side(const KernelScratch& scratch, int side, const std::array<NodeValues, 4>& fields,
-                                  const std::array<NodeValues, 4>& coupled, const NodeValues& phase, const NodeValues& product,
-                                  double* out) const;
+    /// An optically active crystal's node quantities of one side (ActiveNodeFields): the components behind the
+    /// analyzer, on ŝ and ρ̂ without it, or on the lab's x and y before a plate.
+    ActiveNodeFields active_node_fields(const KernelScratch& scratch, int side, const std::array<NodeValues, 4>& fields,
+                                        const std::array<NodeValues, 4>& coupled, const NodeValues& product) const;
+    /// The colour of both sides of an optically active crystal from their node quantities (NodeColour::active_xyz);
+    /// false where this evaluator has no colour weights or a term is too rough to interpolate.
+    bool active_colour_from_nodes(const std::array<ActiveNodeFields, 2>& side_active, const std::array<NodeValues, 2>& side_phase,
+                                  PairColour& colour) const;
+    /// interpolated_pair's transmission of one side of an optically active crystal from its node quantities.
+    void active_interpolated_side(const ActiveNodeFields& active, const NodeValues& phase, double* out) const;
     /// The kernel's transmission at every wavelength, the reference path's where a sample failed.
     void collect_pair(const Eigen::Vector2d& xi, const KernelScratch& scratch, bool any_failed, double* out_plus, double* out_minus) const;
     /// The slab's transfer for ξ (index 0) and −ξ (1) at wavelength index `w`; none where a sheet has no
@@ -120,7 +126,7 @@ private:
     // White light from spectral nodes (none: every wavelength solved).
     std::optional<SpectralNodes> nodes_;
     std::optional<SampleCrystal> node_samples_;
-    std::optional<NodeColour> node_colour_;  // with colour weights, without a plate or optical activity
+    std::optional<NodeColour> node_colour_;  // with colour weights, without a plate
 };
 
 }  // namespace petroscope::detail

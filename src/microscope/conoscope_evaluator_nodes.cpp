@@ -111,8 +111,10 @@ bool ConoscopeEvaluator::interpolated_pair(const KernelScratch& scratch, double*
         if (!(nodes_->tail(side_product[side]) <= coupling_product_tolerance(side_product[side]))) return false;
     }
     if (active) {
-        for (int side = 0; side < 2; ++side) active_interpolated_side(scratch, side, side_fields[side], side_coupled[side], side_phase[side],
-                                                                      side_product[side], side == 0 ? out_plus : out_minus);
+        std::array<ActiveNodeFields, 2> side_active;
+        for (int side = 0; side < 2; ++side) side_active[side] = active_node_fields(scratch, side, side_fields[side], side_coupled[side], side_product[side]);
+        if (colour != nullptr && active_colour_from_nodes(side_active, side_phase, *colour)) return true;
+        for (int side = 0; side < 2; ++side) active_interpolated_side(side_active[side], side_phase[side], side == 0 ? out_plus : out_minus);
         return true;
     }
     if (colour != nullptr && colour_from_nodes(scratch, side_fields, side_phase, *colour)) return true;
@@ -176,29 +178,46 @@ bool ConoscopeEvaluator::colour_from_nodes(const KernelScratch& scratch, const s
     return true;
 }
 
-void ConoscopeEvaluator::active_interpolated_side(const KernelScratch& scratch, int side, const std::array<NodeValues, 4>& fields,
-                                                  const std::array<NodeValues, 4>& coupled, const NodeValues& phase,
-                                                  const NodeValues& product, double* out) const {
+bool ConoscopeEvaluator::active_colour_from_nodes(const std::array<ActiveNodeFields, 2>& side_active, const std::array<NodeValues, 2>& side_phase,
+                                                  PairColour& colour) const {
+    if (!node_colour_) return false;
+    for (std::size_t side = 0; side < 2; ++side) {
+        const std::optional<Eigen::Vector3d> xyz = node_colour_->active_xyz(*nodes_, side_active[side], side_phase[side]);
+        if (!xyz) return false;
+        colour.xyz[side] = *xyz;
+    }
+    colour.written = true;
+    return true;
+}
+
+ActiveNodeFields ConoscopeEvaluator::active_node_fields(const KernelScratch& scratch, int side, const std::array<NodeValues, 4>& fields,
+                                                        const std::array<NodeValues, 4>& coupled, const NodeValues& product) const {
     const auto [rho_x, rho_y, s_x, s_y] = side_frame(scratch, side);
     ActiveNodeFields active;
     active.coupling_product = product;
     if (!plate_jones_lab_.empty()) {
         active.components = 2;
         active.component = {projected_active_fields(fields, coupled, s_x, rho_x), projected_active_fields(fields, coupled, s_y, rho_y)};
-        PlateAnalyzers analyzers{polars_.analyzer_in ? 1 : 2, {}};
-        for (std::size_t k = 0; k < 2; ++k) {
-            for (std::size_t c = 0; c < 4; ++c) analyzers.lab[k][c] = spectral_samples_.plate_analyzer[k][c].data();
-        }
-        interpolated_active_transmission(*nodes_, active, phase, &analyzers, out);
     } else if (polars_.analyzer_in) {
         active.component[0] = projected_active_fields(fields, coupled, polars_.analyzer.x() * s_x + polars_.analyzer.y() * s_y,
-                                               polars_.analyzer.x() * rho_x + polars_.analyzer.y() * rho_y);
-        interpolated_active_transmission(*nodes_, active, phase, nullptr, out);
+                                                      polars_.analyzer.x() * rho_x + polars_.analyzer.y() * rho_y);
     } else {
         active.components = 2;
         active.component = {projected_active_fields(fields, coupled, 1.0, 0.0), projected_active_fields(fields, coupled, 0.0, 1.0)};
-        interpolated_active_transmission(*nodes_, active, phase, nullptr, out);
     }
+    return active;
+}
+
+void ConoscopeEvaluator::active_interpolated_side(const ActiveNodeFields& active, const NodeValues& phase, double* out) const {
+    if (plate_jones_lab_.empty()) {
+        interpolated_active_transmission(*nodes_, active, phase, nullptr, out);
+        return;
+    }
+    PlateAnalyzers analyzers{polars_.analyzer_in ? 1 : 2, {}};
+    for (std::size_t k = 0; k < 2; ++k) {
+        for (std::size_t c = 0; c < 4; ++c) analyzers.lab[k][c] = spectral_samples_.plate_analyzer[k][c].data();
+    }
+    interpolated_active_transmission(*nodes_, active, phase, &analyzers, out);
 }
 
 }  // namespace petroscope::detail
