@@ -1,9 +1,10 @@
 #pragma once
-// The colour of an image point straight from its spectral nodes, where neither a plate nor optical activity is
-// in the way. Behind real polars the transmission is Σ_k (c₀ₖ + c₁ₖ)² − 4 sin²(δ/2)·Σ_k c₀ₖc₁ₖ (interference.hpp,
-// pair_intensity). The colour of the first term is a quadratic form in the node values, so only the fringe term
-// is summed over the wavelengths, with two interpolated quantities (δ and the product) instead of three or five
-// (docs/theory.md, "White light from spectral nodes").
+// The colour of an image point straight from its spectral nodes, where no plate is in the way. Behind real polars
+// the transmission is Σ_k (c₀ₖ + c₁ₖ)² − 4 sin²(δ/2)·Σ_k c₀ₖc₁ₖ (interference.hpp, pair_intensity); that of an
+// optically active crystal S + X cos 2Ω + Y sin 2Ω with smooth S, X, Y. The colour of the smooth terms is a
+// quadratic or linear form in node values, so only the oscillating term is summed over the wavelengths, from two
+// or three interpolated quantities, and not even that where it is smooth itself (docs/theory.md, "White light
+// from spectral nodes").
 #include "spectral_nodes.hpp"
 
 #include <Eigen/Core>
@@ -40,8 +41,8 @@ private:
     /// that cos θ and sin θ are smooth enough; none elsewhere.
     std::optional<Eigen::Vector3d> smooth_rotation(const SpectralNodes& nodes, const NodeValues& angle, const NodeValues& cosine_part,
                                                    const NodeValues& sine_part) const;
-    /// Σ_w W(w)·c(w)·sin²θ(w) (not Active) or Σ_w W(w)·(c(w)·cos θ(w) + s(w)·sin θ(w)) (Active), wavelength by wavelength,
-    /// from the node values of θ, c and s.
+    /// Σ_w W(w)·c(w)·sin²θ(w) (not Active; `sine_part` unused) or Σ_w W(w)·(c(w)·cos θ(w) + s(w)·sin θ(w)) (Active),
+    /// wavelength by wavelength, from the node values of θ, c and s.
     template <bool Active>
     Eigen::Vector3d oscillating_sum(const SpectralNodes& nodes, const NodeValues& angle, const NodeValues& cosine_part,
                                     const NodeValues& sine_part) const;
