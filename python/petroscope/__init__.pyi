@@ -191,6 +191,7 @@ def fit_conoscope(
     candidates: int = 3,
     handedness: str = "right",
     progress: Progress = None,
+    verbose: bool = False,
 ) -> dict[str, object]: ...
 def orthoscope(
     section: Section,
@@ -247,6 +248,7 @@ def fit_orthoscope(
     analyzer_deg: float = 90.0,
     light: LightArgument = None,
     progress: Progress = None,
+    verbose: bool = False,
 ) -> dict[str, object]: ...
 def render_scene(
     path: Union[str, os.PathLike[str]],

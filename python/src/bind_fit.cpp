@@ -5,6 +5,7 @@
 
 #include "petroscope/api/conoscope_photo_model.hpp"
 #include "petroscope/api/grain_fit.hpp"
+#include "petroscope/fit/solver_messages.hpp"
 #include "petroscope/microscope/thin_section.hpp"
 
 #include <pybind11/eigen.h>
@@ -56,8 +57,9 @@ py::dict fit_conoscope(const py::array& photo_array, const std::string& mineral,
                        double numerical_aperture, double polarizer_deg, double analyzer_deg, double surround_n, std::optional<double> thickness_um,
                        std::optional<std::pair<double, double>> thickness_range_um, double tilt_deg, double azimuth_deg,
                        const std::vector<std::string>& free, const std::map<std::string, double>& fixed, int candidates,
-                       const std::string& handedness, const py::object& progress) {
+                       const std::string& handedness, const py::object& progress, bool verbose) {
     const Image photo = image_argument(photo_array, "photo");
+    show_solver_messages(verbose);
     const ConoscopePhotoSetup setup{.cut = cut ? std::optional(parse_cut(*cut)) : std::nullopt, .light = light_argument(light),
                                     .numerical_aperture = numerical_aperture, .polarizer_deg = polarizer_deg,
                                     .analyzer_deg = analyzer_deg, .surround_n = surround_n, .handedness = parse_handedness(handedness)};
@@ -202,7 +204,8 @@ py::dict fit_orthoscope(const py::object& photos, const std::string& mineral, co
                         double plate_slow_deg, const py::object& mask, const py::object& region, const std::string& orientation,
                         const std::optional<std::array<double, 3>>& euler_zyz_deg, std::pair<double, double> thickness_range_um,
                         bool exposure_free, int candidates, double condenser_na, double polarizer_deg, double analyzer_deg,
-                        const py::object& light, const py::object& progress) {
+                        const py::object& light, const py::object& progress, bool verbose) {
+    show_solver_messages(verbose);
     GrainFitRequest request = grain_fit_request(photos, mineral, stage_deg, plate, plate_slow_deg, mask, region, orientation, euler_zyz_deg);
     std::tie(request.thickness_min_um, request.thickness_max_um) = thickness_range_um;
     request.exposure_free = exposure_free;
@@ -226,7 +229,7 @@ void bind_fit(py::module_& module) {
                py::arg("analyzer_deg") = 90.0, py::arg("surround_n") = 1.54, py::arg("thickness_um") = py::none(),
                py::arg("thickness_range_um") = py::none(), py::arg("tilt_deg") = 0.0, py::arg("azimuth_deg") = 0.0,
                py::arg("free") = default_free, py::arg("fixed") = std::map<std::string, double>{}, py::arg("candidates") = 3,
-               py::arg("handedness") = "right", py::arg("progress") = py::none(),
+               py::arg("handedness") = "right", py::arg("progress") = py::none(), py::arg("verbose") = false,
                R"(Fits a photo of a conoscopic figure: the slab's thickness, the figure's centre, scale and rotation,
 the cut's tilt, the camera's gains, black level, gamma and blur (docs/fitting.md).
 
@@ -239,6 +242,8 @@ free: the parameters fitted, by name (thickness_um, center_x_px, center_y_px, fi
   fixed: {name: value} held at a value. candidates: thickness minima refined. handedness: 'right' or 'left',
   the form of an optically active mineral (quartz).
 progress: called with the fraction done; return False to cancel. Ctrl-C cancels.
+verbose: the solver's (Ceres's) messages and its progress per iteration on standard error; off, it prints
+  nothing (as the command line without --verbose).
 
 Returns a dict: values, sigma (1 sigma, None where fixed or not determined), free, identifiable (by
 name); acceptable and verdict; rms_residual, explained_variance, pixels_used, pixels_saturated,
@@ -249,7 +254,7 @@ array carries no JPEG encoding: its systematic error is not checked (the command
                py::arg("orientation") = "max-birefringence", py::arg("euler_zyz_deg") = py::none(),
                py::arg("thickness_range_um") = std::pair(1.0, 200.0), py::arg("exposure_free") = false, py::arg("candidates") = 4,
                py::arg("condenser_na") = 0.0, py::arg("polarizer_deg") = 0.0, py::arg("analyzer_deg") = 90.0, py::arg("light") = py::none(),
-               py::arg("progress") = py::none(),
+               py::arg("progress") = py::none(), py::arg("verbose") = false,
                R"(Fits a grain's thickness (and optic orientation) to its colours in crossed-polar photos (docs/fitting.md).
 
 photos: one photo or a list, each camera values 0 to 1, float, (height, width, 3), sRGB as a camera stores it.
@@ -261,6 +266,7 @@ orientation: 'max-birefringence' (the grain shows its highest colour; its angle 
 exposure_free: fit the exposure too. candidates: grid minima refined (1 to 20). condenser_na,
   polarizer_deg, analyzer_deg, light (white: a Light or None) as for orthoscope().
 progress: called with the fraction done; return False to cancel. Ctrl-C cancels.
+verbose: the solver's (Ceres's) messages on standard error, as for fit_conoscope().
 
 Returns a dict: values, sigma (1 sigma, None where fixed or not determined), free, identifiable, by name
 (thickness_um, retardation_550nm in nm, birefringence_550nm, angle_0_deg … angle_2_deg, exposure) and

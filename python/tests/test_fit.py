@@ -34,6 +34,18 @@ def test_bad_photos_and_arguments_are_refused():
         petroscope.fit_conoscope(camera_photo(40.0, 64), progress=lambda fraction: False)
 
 
+def test_the_solver_prints_only_when_asked(capfd):
+    # The switch is per call and process-wide (glog's settings are): off again after a verbose fit.
+    photo = camera_photo(40.0, 64)
+    settings = dict(mineral="muscovite", thickness_um=38.0, free=["thickness_um"], fixed={"field_radius_px": 32.0}, candidates=1)
+    petroscope.fit_conoscope(photo, **settings)
+    assert capfd.readouterr().err == ""
+    petroscope.fit_conoscope(photo, verbose=True, **settings)
+    assert "iter" in capfd.readouterr().err  # Ceres's progress per iteration
+    petroscope.fit_conoscope(photo, **settings)
+    assert capfd.readouterr().err == ""
+
+
 def srgb_codes(linear):
     """Linear sRGB as a camera stores it: the sRGB transfer curve (IEC 61966-2-1), codes 0 to 1."""
     x = np.clip(linear, 0.0, 1.0)
