@@ -14,11 +14,6 @@ namespace {
 // Practice, 2013, Theorem 8.2); no feature narrower than the node spacing can then hide from the tail
 // estimate below, which decides.
 constexpr double kSmoothness = 2.0;
-// Interpolation errors allowed (SpectralNodes::tail): 1e-3 rad in δ and 1e-4 in each mode's field (the
-// incident field is 1) change a transmission by at most about 1e-3, below ΔE₀₀ ≈ 0.1 where the colour is
-// most sensitive; beyond them every wavelength is solved (a thick slab of a strongly dispersive crystal).
-constexpr double kPhaseTolerance_rad = 1e-3;
-constexpr double kFieldTolerance = 1e-4;
 // The product of two amplitudes each within kFieldTolerance (NodeColour) is within about twice that.
 constexpr double kProductTolerance = 2.0 * kFieldTolerance;
 // An optically active crystal's p = b₀b₁ ≥ 0 enters through Ω = √((δ/2)² + p) ≥ √p: an error e in p moves Ω by

@@ -21,10 +21,9 @@ bool narrow_range(const NodeValues& angle) {
     const auto [least, most] = std::minmax_element(angle.begin(), angle.end());
     return *most - *least <= kSmoothFringePhaseRange_rad;
 }
-// An optically active crystal's terms (active_xyz): 2Ω within 1e-3 rad, as δ elsewhere (conoscope_evaluator_nodes.cpp),
+// An optically active crystal's terms (active_xyz): 2Ω within kPhaseTolerance_rad, as δ elsewhere (spectral_nodes.hpp),
 // and each of S, X, Y within 1e-4 of the transmission. Below kLeastRotation_rad of Ω at a node (no coupling on an optic
 // axis) the terms' 1/Ω is left to the spectrum.
-constexpr double kPhaseTolerance_rad = 1e-3;
 constexpr double kTermTolerance = 1e-4;
 constexpr double kLeastRotation_rad = 1e-6;
 

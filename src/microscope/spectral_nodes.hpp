@@ -54,6 +54,12 @@ private:
 /// Values of one quantity at the nodes.
 using NodeValues = std::array<double, kSpectralNodes>;
 
+/// Interpolation errors allowed (SpectralNodes::tail): 1e-3 rad in δ and 1e-4 in each mode's field (the incident
+/// field is 1) change a transmission by at most about 1e-3, below ΔE₀₀ ≈ 0.1 where the colour is most sensitive;
+/// beyond them every wavelength is solved (a thick slab of a strongly dispersive crystal).
+inline constexpr double kPhaseTolerance_rad = 1e-3;
+inline constexpr double kFieldTolerance = 1e-4;
+
 /// The interpolant Σⱼ ℓⱼ(w)·values[j] at grid wavelength w (basis and stride of SpectralNodes), as two partial sums
 /// over even and odd j: half the chain of dependent additions, for loops that vectorise over w.
 inline double interpolate_at(const double* basis, std::size_t stride, std::size_t w, const NodeValues& values) {
