@@ -15,6 +15,11 @@ Methods (all closed forms; docs/verification.md derives them):
     incidence x-z; biaxial with the optic axial plane x-z): the TE (E along y) and TM (H along y) waves
     decouple; each has a closed-form normal component q = k_z/k0 and a closed-form admittance, and the
     interface is two 2x2 problems (section "TE/TM" below);
+  * an optically active uniaxial crystal (quartz) with its optic axis along the normal, at normal incidence:
+    Landau's relation D = eps E + i (g.N) x E gives two circular waves with n^2 = n_o^2 +- n g33, and
+    Berreman's bianisotropic form of it (H = N x E + i kappa E, kappa = (tr g/2) I - g) gives both of them
+    the admittance n_bar = sqrt(n_o^2 + g33^2/4), so the interface is Fresnel's at normal incidence with
+    n_bar (section "Optical activity" below);
   * otherwise (uniaxial at a general azimuth, and a biaxial crystal with the wave normal exactly on a
     binormal): the transmitted eigenmodes are written down in closed form (uniaxial: the ordinary sphere
     and the extraordinary ellipsoid, a quadratic in q; binormal: N = n_beta * b, any D perpendicular to b)
@@ -324,6 +329,19 @@ def kato_ktp(lam_um):
     return (f(3.29100, 0.04140, 0, 0.03978, 1, 9.35522, 0, 31.45571, 1),
             f(3.45018, 0.04341, 0, 0.04597, 1, 16.98825, 0, 39.43799, 1),
             f(4.59423, 0.06206, 0, 0.04763, 1, 110.80672, 0, 86.12171, 1))
+
+
+def ghosh_quartz(lam_um):
+    """minerals/quartz.txt: n_o by rii-formula-2 (Ghosh 1999), the formula of ghosh_calcite."""
+    l2 = lam_um * lam_um
+    return math.sqrt(1.0 + 0.28604141 + 1.07044083 * l2 / (l2 - 1.00585997e-2) + 1.10202242 * l2 / (l2 - 100.0))
+
+
+def lowry_quartz_gyration(lam_um):
+    """minerals/quartz.txt: the rotatory power along c, rho = K/(L^2 - L0^2) deg/mm (a one-term Drude formula
+    fitted to Lowry 1912), as Landau's g33 = lambda rho / pi with rho in rad/um."""
+    rho_deg_per_mm = 7.16278575 / (lam_um * lam_um - 0.13239037 ** 2)
+    return lam_um * rho_deg_per_mm * DEG * 1e-3 / math.pi
 
 
 # Indices used by the cases (589.3 nm).
@@ -762,6 +780,7 @@ def build_cases():
 
     calcite_cases()
     biaxial_cases()
+    quartz_cases()
 
 
 def crystal_wave(kind, mode, power, n_vec, eta, xi, te, tol=TOL, d_tol=TOL):
@@ -1065,6 +1084,55 @@ def biaxial_cases():
                  "direction (a near-binormal solver error shows up here as excess power).",
                  src, {"direction": clean(k_in), "polarization": "unpolarized", "angle_rad": delta}, {"n": 1.0},
                  {"principal_n": pn, "euler_zyz_deg": euler}, waves, sum_tol=TOL_DEFECT)
+
+
+# ----------------------------------------------------------------------------------------------------
+# Optical activity: quartz cut across its optic axis, normal incidence (docs/verification.md T8).
+#   Along z, with g = diag(g11, g11, g33): circular E with z x E = +i E (right circular about +z in the
+#   (s, p) basis here) has n^2 = n_o^2 - n g33, z x E = -i E has n^2 = n_o^2 + n g33; so n = n_bar -+ g33/2
+#   with n_bar = sqrt(n_o^2 + g33^2/4). H = N x E + i kappa E with kappa_xx = kappa_yy = g33/2 is n_bar z x E
+#   for both: the two waves have one admittance, and reflection is Fresnel's with n_bar. A wave going back
+#   (-z) keeps its lab-frame E, so its sense about its own direction flips: a fast wave reflects into the slow one.
+
+def quartz_cases():
+    n_o = ghosh_quartz(LAM_UM)
+    src = "Landau & Lifshitz vol. 8 §§100-101; Berreman, JOSA 62, 502 (1972); docs/verification.md T8"
+    for hand in ("right", "left"):
+        g33 = lowry_quartz_gyration(LAM_UM) * (1.0 if hand == "right" else -1.0)
+        n_bar = math.sqrt(n_o * n_o + g33 * g33 / 4)
+        r = (1.0 - n_bar) / (1.0 + n_bar)
+        big_r = r * r
+        half = (1.0 - big_r) / 2
+        sense = 1.0 if g33 > 0 else -1.0  # S3 of the fast wave: right circular in a dextrorotatory crystal
+        quartz = {"mineral": "quartz", "handedness": hand}
+        waves = [wave("reflected", "s+p", big_r, [0.0, 0.0, -1.0], 1.0, stokes=[big_r, big_r, 0.0, 0.0]),
+                 wave("transmitted", "fast", half, [0.0, 0.0, 1.0], n_bar - abs(g33) / 2, stokes=[half, 0.0, 0.0, sense * half],
+                      ray_direction=[0.0, 0.0, 1.0]),
+                 wave("transmitted", "slow", half, [0.0, 0.0, 1.0], n_bar + abs(g33) / 2, stokes=[half, 0.0, 0.0, -sense * half],
+                      ray_direction=[0.0, 0.0, 1.0])]
+        c = add_case("quartz-axis-normal-%s-s" % hand,
+                     "%s-handed quartz (petroscope's record: n_o %.12g by Ghosh 1999, rotatory power %.10g deg/mm along c by the "
+                     "Drude fit to Lowry 1912, so g33 = lambda rho/pi = %.10g), optic axis along the normal, s-polarized light from "
+                     "vacuum at normal incidence: two circular waves along the normal, indices n_bar -+ |g33|/2 with n_bar = "
+                     "sqrt(n_o^2 + g33^2/4); both have the admittance n_bar, so R = ((n_bar - 1)/(n_bar + 1))^2 and each carries "
+                     "(1 - R)/2; the fast wave is %s circular (S3 %s 0)." % (
+                         hand.capitalize(), n_o, abs(g33) * math.pi / (LAM_UM * DEG * 1e-3), abs(g33), hand, ">" if sense > 0 else "<"),
+                     src, {"direction": [0.0, 0.0, 1.0], "polarization": "s"}, {"n": 1.0}, quartz, waves)
+        c["_print"] = ["n_o %s g33 %s n_bar %s R %s n_fast %s n_slow %s" % (g(n_o), g(g33), g(n_bar), g(big_r), g(n_bar - abs(g33) / 2), g(n_bar + abs(g33) / 2))]
+    g33 = lowry_quartz_gyration(LAM_UM)
+    n_bar = math.sqrt(n_o * n_o + g33 * g33 / 4)
+    big_r = ((1.0 - n_bar) / (1.0 + n_bar)) ** 2
+    waves = [wave("reflected", "fast", 0.0, [0.0, 0.0, -1.0], n_bar - g33 / 2),
+             wave("reflected", "slow", big_r, [0.0, 0.0, -1.0], n_bar + g33 / 2, stokes=[big_r, 0.0, 0.0, -big_r],
+                  ray_direction=[0.0, 0.0, -1.0]),
+             wave("transmitted", "s+p", 1.0 - big_r, [0.0, 0.0, 1.0], 1.0, stokes=[1.0 - big_r, 0.0, 0.0, 1.0 - big_r])]
+    add_case("quartz-axis-exit-right-fast",
+             "The fast (right circular) wave of right-handed quartz along its optic axis leaving into vacuum at normal "
+             "incidence: T = 1 - R with R = ((n_bar - 1)/(n_bar + 1))^2, the transmitted light stays right circular; the "
+             "reflected light keeps its field in the lab frame, so about its own direction it turns left circular: it is "
+             "the SLOW wave, which carries all of R; the fast reflected wave carries nothing.",
+             src, {"direction": [0.0, 0.0, 1.0], "polarization": "fast"}, {"mineral": "quartz", "handedness": "right"},
+             {"n": 1.0}, waves)
 
 
 # ----------------------------------------------------------------------------------------------------

@@ -3,6 +3,7 @@
 #include "petroscope/core/text.hpp"
 #include "petroscope/io/data_files.hpp"
 #include "petroscope/io/json_reader.hpp"
+#include "petroscope/optics/gyration.hpp"
 #include "petroscope/optics/orientation.hpp"
 
 #include <algorithm>
@@ -31,19 +32,39 @@ void check_index(const JsonValue& where, complex n) {
     if (!(n.real() > 0.0) || n.imag() < 0.0) throw where.error("expected a refractive index with n > 0 (and κ >= 0)");
 }
 
-// {"n": 1.5} | {"n": [1.5, 0.01]} | {"principal_n": [n1, n2, n3], "euler_zyz_deg": [a, b, c]} |
-// {"mineral": "calcite", "euler_zyz_deg": [a, b, c]}
+// Optical activity of a medium given by its indices: "rotatory_power_deg_per_mm": [ρX, ρY, ρZ] (°/mm,
+// positive dextrorotatory, along the indicatrix axes; docs/conventions.md), as gᵢᵢ = λρᵢ/π.
+Eigen::Matrix3d gyration_of(const JsonValue& medium, double wavelength_nm) {
+    if (!medium.has("rotatory_power_deg_per_mm")) return Eigen::Matrix3d::Zero();
+    const JsonValue value = medium["rotatory_power_deg_per_mm"];
+    const std::vector<double> rho = value.numbers(3);
+    const Eigen::Vector3d rho_deg_per_mm(rho[0], rho[1], rho[2]);
+    if (!(rho_deg_per_mm.cwiseAbs().maxCoeff() <= 1000.0)) throw value.error("expected rotatory powers within ±1000 °/mm");
+    return gyration_tensor(rho_deg_per_mm * (std::numbers::pi / 180.0 * 1e-3), Eigen::Matrix3d::Identity(), wavelength_nm, Handedness::right);
+}
+
+// {"n": 1.5} | {"n": [1.5, 0.01]} | {"principal_n": [n1, n2, n3], "euler_zyz_deg": [a, b, c]} (either with
+// "rotatory_power_deg_per_mm") | {"mineral": "quartz", "euler_zyz_deg": [a, b, c], "handedness": "left"}
 OpticalMedium parse_medium(const JsonValue& medium, double wavelength_nm, const MineralCatalog& catalog) {
     if (!medium.raw().is_object()) throw medium.error("expected an object with \"n\", \"principal_n\" or \"mineral\"");
     const int forms = medium.has("n") + medium.has("principal_n") + medium.has("mineral");
     if (forms != 1) throw medium.error("expected exactly one of \"n\", \"principal_n\" or \"mineral\"");
+    if (medium.has("mineral") && medium.has("rotatory_power_deg_per_mm")) {
+        throw medium["rotatory_power_deg_per_mm"].error("a mineral's optical activity comes from its record (choose its form with \"handedness\")");
+    }
+    if (!medium.has("mineral") && medium.has("handedness")) {
+        throw medium["handedness"].error("\"handedness\" chooses the form of an optically active mineral; give \"rotatory_power_deg_per_mm\" here");
+    }
     if (medium.has("n")) {
         const complex n = medium["n"].complex_number();
         check_index(medium["n"], n);
-        return OpticalMedium::isotropic(n);
+        OpticalMedium isotropic = OpticalMedium::isotropic(n);
+        isotropic.gyration = gyration_of(medium, wavelength_nm);
+        return isotropic;
     }
     OpticalMedium result;
     result.axes = orientation_of(medium);
+    result.gyration = gyration_of(medium, wavelength_nm);
     if (medium.has("principal_n")) {
         const JsonValue list = medium["principal_n"];
         if (!list.raw().is_array() || list.raw().size() != 3) throw list.error("expected an array of 3 indices (numbers or [re, im])");
@@ -60,16 +81,29 @@ OpticalMedium parse_medium(const JsonValue& medium, double wavelength_nm, const 
     } catch (const InputError& e) {
         throw name.error(e.what());
     }
-    if (mineral->optically_active()) {
-        throw name.error(mineral->name + " is optically active, which the interface model does not model yet (docs/theory.md, \"Optical activity\")");
-    }
     const Eigen::Vector3d n = mineral->principal_n(wavelength_nm);
     if (!n.allFinite() || n.minCoeff() < 1.0) throw name.error(mineral->name + " has no physical index at this wavelength");
-    return OpticalMedium::from_n_kappa(n, mineral->principal_kappa(wavelength_nm), result.axes);
+    OpticalMedium crystal = OpticalMedium::from_n_kappa(n, mineral->principal_kappa(wavelength_nm), result.axes);
+    if (!mineral->optically_active()) {
+        if (medium.has("handedness")) throw medium["handedness"].error(mineral->name + " is not optically active: it has no handedness");
+        return crystal;
+    }
+    // The right-handed form unless the case says otherwise, as on the command line.
+    Handedness handedness = Handedness::right;
+    if (medium.has("handedness")) {
+        const JsonValue hand = medium["handedness"];
+        try {
+            handedness = parse_handedness(hand.text());
+        } catch (const InputError& e) {
+            throw hand.error(e.what());
+        }
+    }
+    crystal.gyration = gyration_tensor(mineral->principal_rotatory_power(wavelength_nm), Eigen::Matrix3d::Identity(), wavelength_nm, handedness);
+    return crystal;
 }
 
 constexpr const char* kIncidentModeExpected =
-    "medium 1 is anisotropic: expected the name of the incident mode (\"fast\", \"slow\", \"ordinary\", \"extraordinary\")";
+    "medium 1 is anisotropic or optically active: expected the name of the incident mode (\"fast\", \"slow\", \"ordinary\", \"extraordinary\")";
 
 // Polarization of the incident wave (docs/interface.md).
 void parse_polarization(const JsonValue& value, bool anisotropic_medium, InterfaceIncidence& incidence) {
@@ -139,7 +173,7 @@ InterfaceCase parse_interface_case(const nlohmann::json& document, const std::st
     if (!(result.incidence.direction.dot(result.normal) > 0.0)) {
         throw incident["direction"].error("the incident wave must travel from medium 1 into medium 2 (positive component along \"normal\")");
     }
-    parse_polarization(incident["polarization"], !result.medium1.is_isotropic(), result.incidence);
+    parse_polarization(incident["polarization"], !result.medium1.has_s_and_p_waves(), result.incidence);
     return result;
 }
 

@@ -528,6 +528,11 @@ std::array<BerremanMode, 4> berreman_modes(const Eigen::Matrix3cd& epsilon, cons
 StackResponse solve_stack(const Eigen::Matrix3cd& ambient, const std::vector<StackLayer>& layers,
                           const Eigen::Matrix3cd& substrate, double wavelength_nm, const Eigen::Vector2d& xi,
                           const Eigen::Vector4cd& incident_psi) {
+    return solve_stack(StackLayer{ambient}, layers, StackLayer{substrate}, wavelength_nm, xi, incident_psi);
+}
+
+StackResponse solve_stack(const StackLayer& ambient, const std::vector<StackLayer>& layers, const StackLayer& substrate,
+                          double wavelength_nm, const Eigen::Vector2d& xi, const Eigen::Vector4cd& incident_psi) {
     if (!(wavelength_nm > 0.0) || !std::isfinite(wavelength_nm)) {
         throw std::invalid_argument("solve_stack: the wavelength must be positive and finite");
     }
@@ -539,9 +544,9 @@ StackResponse solve_stack(const Eigen::Matrix3cd& ambient, const std::vector<Sta
     const double k0_per_um = 2.0 * std::numbers::pi * 1e3 / wavelength_nm;  // k₀ = 2π/λ
     const PlaneOfIncidence plane(xi);
 
-    const Medium ambient_medium(ambient, plane);
+    const Medium ambient_medium(ambient.epsilon, plane, ambient.chirality);
     const auto ambient_modes = all_modes(ambient_medium, plane, medium_spectrum(ambient_medium));
-    const Medium substrate_medium(substrate, plane);
+    const Medium substrate_medium(substrate.epsilon, plane, substrate.chirality);
     const auto substrate_modes = all_modes(substrate_medium, plane, medium_spectrum(substrate_medium));
 
     Scattering total;  // identity

@@ -61,13 +61,22 @@ Eigen::Matrix3d local_frame(const Eigen::Vector3d& normal, const Eigen::Vector3d
 }
 
 OpticalMedium in_frame(const OpticalMedium& medium, const Eigen::Matrix3d& frame) {
-    return OpticalMedium{medium.principal_n, frame * medium.axes};
+    return OpticalMedium{medium.principal_n, frame * medium.axes, medium.gyration};
 }
 
-// The mode of anisotropic sheet `sheet` (0: smaller Re n).
+// The indices of the two waves of an optically active medium whose wave normal is k̂ (fast first): its modes
+// at normal incidence on the plane ⟂ k̂, where q = n.
+template <typename Real>
+std::array<double, 2> active_indices(const OpticalMedium& medium, const Eigen::Vector3d& k_hat) {
+    const LocalModes<Real> along = detail::local_modes<Real>(in_frame(medium, local_frame(k_hat, k_hat)), 0.0);
+    return {static_cast<double>(along.forward[0].q.real()), static_cast<double>(along.forward[1].q.real())};
+}
+
+// The mode of sheet `sheet` (0: smaller Re n) of a medium without s and p waves. An optically active medium's
+// waves are elliptical, neither ordinary nor extraordinary: fast and slow.
 template <typename Real>
 InterfaceMode anisotropic_mode(const OpticalMedium& medium, const LocalModes<Real>& modes, Real xi, int sheet, bool forward) {
-    if (!medium.is_uniaxial()) return sheet == 0 ? InterfaceMode::fast : InterfaceMode::slow;
+    if (!medium.is_uniaxial() || medium.is_active()) return sheet == 0 ? InterfaceMode::fast : InterfaceMode::slow;
     // Uniaxial: the ordinary wave is the one whose index is n_o (the repeated principal index).
     const complex n_o_double = medium.principal_n[0] == medium.principal_n[1] ? medium.principal_n[0] : medium.principal_n[2];
     const std::complex<Real> n_o(n_o_double.real(), n_o_double.imag());
@@ -238,6 +247,10 @@ void check_medium(const OpticalMedium& medium, const std::string& what) {
     if (!medium.axes.allFinite() || !(medium.axes.transpose() * medium.axes).isIdentity(1e-9)) {
         throw bad(what + ": orientation is not a rotation");
     }
+    const Eigen::Matrix3d& g = medium.gyration;
+    if (!g.allFinite() || !(g - g.transpose()).isZero(1e-12 * std::max(1.0, g.cwiseAbs().maxCoeff()))) {
+        throw bad(what + ": the gyration tensor must be finite and symmetric");
+    }
 }
 
 // Indexed by InterfaceMode.
@@ -259,23 +272,28 @@ InterfaceResult solve_interface_in(const Eigen::Vector3d& normal_in, const Inter
     // The incident wave: its index (a mode's, in an anisotropic medium 1) fixes ξ = n sin θ.
     InterfaceResult result;
     int incident_sheet = -1;
-    if (medium1.is_isotropic()) {
+    if (medium1.has_s_and_p_waves()) {
         result.incident_n = medium1.principal_n[0];
     } else {
-        const ModePair pair = eigenmodes(BinormalFrame(Indicatrix{medium1.real_n(), medium1.axes}), k_hat);
+        const bool named_by_axis = medium1.is_uniaxial() && !medium1.is_active();
+        const std::array<double, 2> n = medium1.is_active() ? active_indices<Real>(medium1, k_hat) : [&] {
+            const ModePair pair = eigenmodes(BinormalFrame(Indicatrix{medium1.real_n(), medium1.axes}), k_hat);
+            return std::array<double, 2>{pair.fast.n, pair.slow.n};
+        }();
         const std::optional<InterfaceMode> mode = incidence.mode;
         if (mode == InterfaceMode::fast || mode == InterfaceMode::slow) {
             incident_sheet = mode == InterfaceMode::fast ? 0 : 1;
-        } else if (medium1.is_uniaxial() && (mode == InterfaceMode::ordinary || mode == InterfaceMode::extraordinary)) {
+        } else if (named_by_axis && (mode == InterfaceMode::ordinary || mode == InterfaceMode::extraordinary)) {
             const double n_o = medium1.principal_n[0] == medium1.principal_n[1] ? medium1.principal_n[0].real() : medium1.principal_n[2].real();
-            const bool fast_is_ordinary = std::abs(pair.fast.n - n_o) <= std::abs(pair.slow.n - n_o);
+            const bool fast_is_ordinary = std::abs(n[0] - n_o) <= std::abs(n[1] - n_o);
             incident_sheet = (mode == InterfaceMode::ordinary) == fast_is_ordinary ? 0 : 1;
         } else {
-            throw bad("medium 1 is anisotropic: the incident wave must be one of its modes, \"fast\" or \"slow\"" +
-                      std::string(medium1.is_uniaxial() ? " (or \"ordinary\", \"extraordinary\")" : "") +
+            throw bad(std::string(medium1.is_active() ? "medium 1 is optically active" : "medium 1 is anisotropic") +
+                      ": the incident wave must be one of its modes, \"fast\" or \"slow\"" +
+                      std::string(named_by_axis ? " (or \"ordinary\", \"extraordinary\")" : "") +
                       (mode ? ", not " + quote_input(wave_mode_name(*mode)) : ", but none was given"));
         }
-        result.incident_n = incident_sheet == 0 ? pair.fast.n : pair.slow.n;
+        result.incident_n = n[static_cast<std::size_t>(incident_sheet)];
     }
     // ξ = n sin θ, with sin θ as the length of the tangential part of k̂ (√(1 − cos²θ) would lose it near
     // normal incidence).
@@ -298,14 +316,14 @@ InterfaceResult solve_interface_in(const Eigen::Vector3d& normal_in, const Inter
     }
     // Power orthogonality (lossless anisotropic media): the incident mode stays as it is, the others are
     // made orthogonal to it and to each other.
-    if (!medium1.is_isotropic() && medium1.is_lossless()) {
+    if (!medium1.has_s_and_p_waves() && medium1.is_lossless()) {
         std::vector<LocalMode<Real>*> order{inputs.front()};
         for (LocalMode<Real>* mode : {&modes1.forward[0], &modes1.forward[1], &modes1.backward[0], &modes1.backward[1]}) {
             if (mode != inputs.front()) order.push_back(mode);
         }
         orthogonalize_fluxes(order);
     }
-    if (!medium2.is_isotropic() && medium2.is_lossless()) orthogonalize_fluxes<Real>({&modes2.forward[0], &modes2.forward[1]});
+    if (!medium2.has_s_and_p_waves() && medium2.is_lossless()) orthogonalize_fluxes<Real>({&modes2.forward[0], &modes2.forward[1]});
     const Eigen::Matrix3d to_lab = frame.transpose();
     const auto lab_vector = [&](const Eigen::Matrix<Real, 3, 1>& local) -> Eigen::Vector3d {
         return to_lab * local.template cast<double>().normalized();
@@ -339,7 +357,7 @@ InterfaceResult solve_interface_in(const Eigen::Vector3d& normal_in, const Inter
         const auto& pair = reflected ? modes.backward : modes.forward;
         const int base = reflected ? 0 : 2;
         const auto kind = reflected ? InterfaceWave::Kind::reflected : InterfaceWave::Kind::transmitted;
-        if (medium.is_isotropic()) {
+        if (medium.has_s_and_p_waves()) {
             groups[group_count++] = {{&pair[0], &pair[1]}, {base, base + 1}, 2, InterfaceMode::isotropic, kind};
         } else {
             for (int sheet = 0; sheet < 2; ++sheet) {
@@ -390,9 +408,9 @@ InterfaceResult solve_interface_in(const Eigen::Vector3d& normal_in, const Inter
         wave.power = out.power;
         wave.stokes = out.stokes;
         if (incident_sheet < 0 && incidence.with_mueller) wave.mueller = wave_mueller(wave_amplitudes, inputs);
-        if (group.size == 1) {
+        const OpticalMedium& local = group.kind == InterfaceWave::Kind::reflected ? local1 : local2;
+        if (group.size == 1 && !local.is_active()) {
             // D = εE; its common phase removed through its largest component.
-            const OpticalMedium& local = group.kind == InterfaceWave::Kind::reflected ? local1 : local2;
             const detail::Vector3c<Real> d = local.permittivity().template cast<std::complex<Real>>() * lead.e_field;
             Eigen::Index largest = 0;
             d.cwiseAbs2().maxCoeff(&largest);

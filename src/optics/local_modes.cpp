@@ -1,5 +1,6 @@
 #include "local_modes.hpp"
 
+#include "petroscope/optics/gyration.hpp"
 #include "petroscope/optics/slab.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -15,6 +16,24 @@ namespace {
 using complex = std::complex<double>;
 template <typename Real>
 using Matrix3c = Eigen::Matrix<std::complex<Real>, 3, 3>;
+template <typename Real>
+using Matrix3r = Eigen::Matrix<Real, 3, 3>;
+
+// A medium in the local frame, in the arithmetic `Real`: ε and, if it is optically active, Landau's gyration
+// tensor g and the chirality κ = (tr g/2)·I − g of the equivalent bianisotropic relations (optics/gyration.hpp).
+template <typename Real>
+struct LocalMedium {
+    Matrix3c<Real> epsilon;
+    Matrix3r<Real> gyration = Matrix3r<Real>::Zero(), chirality = Matrix3r<Real>::Zero();
+    bool active = false;
+    explicit LocalMedium(const OpticalMedium& medium)
+        : epsilon(medium.permittivity().template cast<std::complex<Real>>()), active(medium.is_active()) {
+        if (!active) return;
+        const Eigen::Matrix3d lab_gyration = medium.lab_gyration();
+        gyration = lab_gyration.template cast<Real>();
+        chirality = chirality_tensor(lab_gyration).template cast<Real>();
+    }
+};
 
 // Thresholds that depend on the arithmetic: the relative separation (squared) below which two roots of the
 // quartic are one double root, and the relative |Im q| below which a mode of a lossless medium
@@ -69,38 +88,51 @@ Polynomial<Real> linear(std::complex<Real> a, std::complex<Real> b) { return Pol
 template <typename Real>
 Polynomial<Real> quadratic(std::complex<Real> a, std::complex<Real> c2) { return Polynomial<Real>{{a, Real(0), c2, Real(0), Real(0)}}; }  // a + c₂q²
 
-// The wave equation N × (N × E) + εE = 0 as M(q)E = 0 with N = (ξ, 0, q):
-// M = ε + NNᵀ − |N|²I (Born & Wolf §15.2; docs/theory.md §1).
+// The wave equation N × (N × E) + εE + i(g·N) × E = 0 as M(q)E = 0 with N = (ξ, 0, q):
+// M = ε + NNᵀ − |N|²I + i[(g·N)×] (Born & Wolf §15.2; Landau & Lifshitz vol. 8 §101; docs/theory.md §1, §9).
 template <typename Real>
-Matrix3c<Real> wave_matrix(const Matrix3c<Real>& epsilon, Real xi, std::complex<Real> q) {
-    Matrix3c<Real> m = epsilon;
+Matrix3c<Real> wave_matrix(const LocalMedium<Real>& medium, Real xi, std::complex<Real> q) {
+    Matrix3c<Real> m = medium.epsilon;
     m(0, 0) -= q * q;
     m(1, 1) -= xi * xi + q * q;
     m(2, 2) -= xi * xi;
     m(0, 2) += xi * q;
     m(2, 0) += xi * q;
+    if (medium.active) {
+        const Vector3c<Real> g_n = (medium.gyration.col(0) * xi).template cast<std::complex<Real>>() + medium.gyration.col(2).template cast<std::complex<Real>>() * q;
+        const Vector3c<Real> i_g = std::complex<Real>(Real(0), Real(1)) * g_n;
+        m(0, 1) -= i_g.z();
+        m(1, 0) += i_g.z();
+        m(0, 2) += i_g.y();
+        m(2, 0) -= i_g.y();
+        m(1, 2) -= i_g.x();
+        m(2, 1) += i_g.x();
+    }
     return m;
 }
 
-// The mode with field E (H = N × E and the z flux follow).
+// The mode with field E, its H and z flux: H = N × E, or for an active medium H = N × E + iκE (from
+// B = H − iκE; optics/gyration.hpp), with which the tangential E and H are continuous and ½ Re(E × H*) is
+// the flux (Berreman, JOSA 62, 502 (1972)).
 template <typename Real>
-LocalMode<Real> make_mode(std::complex<Real> q, Real xi, const Vector3c<Real>& e_field) {
+LocalMode<Real> make_mode(std::complex<Real> q, Real xi, const Vector3c<Real>& e_field, const LocalMedium<Real>* active = nullptr) {
     LocalMode<Real> mode;
     mode.q = q;
     mode.e_field = e_field;
     const Vector3c<Real> n_vector(xi, Real(0), q);
     mode.h_field = bilinear_cross(n_vector, e_field);
+    if (active) mode.h_field += std::complex<Real>(Real(0), Real(1)) * (active->chirality.template cast<std::complex<Real>>() * e_field);
     mode.flux_z = poynting_z(e_field, mode.h_field);
     return mode;
 }
 
 // The same with E scaled to unit length and its largest component real and positive.
 template <typename Real>
-LocalMode<Real> complete(std::complex<Real> q, Real xi, Vector3c<Real> e_field) {
+LocalMode<Real> complete(std::complex<Real> q, Real xi, Vector3c<Real> e_field, const LocalMedium<Real>* active = nullptr) {
     Eigen::Index largest = 0;
     e_field.cwiseAbs2().maxCoeff(&largest);
     e_field *= std::conj(e_field[largest]) / (std::sqrt(magnitude_squared(e_field[largest])) * e_field.norm());
-    return make_mode(q, xi, e_field);
+    return make_mode(q, xi, e_field, active);
 }
 
 template <typename Real>
@@ -171,11 +203,16 @@ std::complex<Real> determinant_full_pivoting(Matrix3c<Real> a) {
 // The roots of det M(q) = 0, a quartic, for any medium: the eigenvalues of its companion matrix (double is
 // enough for starting values), polished by Newton in `Real`.
 template <typename Real>
-std::array<std::complex<Real>, 4> quartic_roots(const Matrix3c<Real>& epsilon, Real xi) {
-    const auto x = [&](int i, int j) { return epsilon(i, j); };
-    const Polynomial<Real> m00 = quadratic<Real>(x(0, 0), -Real(1)), m01 = constant<Real>(x(0, 1)), m02 = linear<Real>(x(0, 2), xi);
-    const Polynomial<Real> m10 = constant<Real>(x(1, 0)), m11 = quadratic<Real>(x(1, 1) - xi * xi, -Real(1)), m12 = constant<Real>(x(1, 2));
-    const Polynomial<Real> m20 = linear<Real>(x(2, 0), xi), m21 = constant<Real>(x(2, 1)), m22 = constant<Real>(x(2, 2) - xi * xi);
+std::array<std::complex<Real>, 4> quartic_roots(const LocalMedium<Real>& medium, Real xi) {
+    const auto x = [&](int i, int j) { return medium.epsilon(i, j); };
+    // The components of i(g·N) = i(ξ g₀ + q g₂), linear in q (zero for an inactive medium).
+    const auto i_g = [&](int c) {
+        const std::complex<Real> i(Real(0), Real(1));
+        return linear<Real>(i * xi * medium.gyration(c, 0), i * medium.gyration(c, 2));
+    };
+    const Polynomial<Real> m00 = quadratic<Real>(x(0, 0), -Real(1)), m01 = constant<Real>(x(0, 1)) - i_g(2), m02 = linear<Real>(x(0, 2), xi) + i_g(1);
+    const Polynomial<Real> m10 = constant<Real>(x(1, 0)) + i_g(2), m11 = quadratic<Real>(x(1, 1) - xi * xi, -Real(1)), m12 = constant<Real>(x(1, 2)) - i_g(0);
+    const Polynomial<Real> m20 = linear<Real>(x(2, 0), xi) - i_g(1), m21 = constant<Real>(x(2, 1)) + i_g(0), m22 = constant<Real>(x(2, 2) - xi * xi);
     const Polynomial<Real> determinant = m00 * (m11 * m22 - m12 * m21) - m01 * (m10 * m22 - m12 * m20) + m02 * (m10 * m21 - m11 * m20);
     Eigen::Matrix4cd companion = Eigen::Matrix4cd::Zero();
     for (int i = 0; i < 3; ++i) companion(i + 1, i) = 1.0;
@@ -198,7 +235,7 @@ std::array<std::complex<Real>, 4> quartic_roots(const Matrix3c<Real>& epsilon, R
         for (int step = 0; step < 3; ++step) {
             std::complex<Real> slope;
             determinant(q, &slope);
-            const std::complex<Real> value = determinant_full_pivoting(wave_matrix(epsilon, xi, q));
+            const std::complex<Real> value = determinant_full_pivoting(wave_matrix(medium, xi, q));
             if (std::abs(slope) == Real(0)) break;
             q -= value / slope;
         }
@@ -210,15 +247,16 @@ std::array<std::complex<Real>, 4> quartic_roots(const Matrix3c<Real>& epsilon, R
 // General medium: the roots of the quartic, their null vectors, forward and backward.
 template <typename Real>
 LocalModes<Real> general_modes(const OpticalMedium& medium, double xi_double) {
-    const Matrix3c<Real> epsilon = medium.permittivity().template cast<std::complex<Real>>();
+    const LocalMedium<Real> local(medium);
+    const LocalMedium<Real>* active = local.active ? &local : nullptr;
     const Real xi = xi_double;
-    const std::array<std::complex<Real>, 4> roots = quartic_roots(epsilon, xi);
+    const std::array<std::complex<Real>, 4> roots = quartic_roots(local, xi);
     // Null vectors: of a simple root, M(q) has rank 2 and its null vector is the (unconjugated) cross
     // product of two of its rows, the largest of the three; a double root (degenerate modes) takes the two
     // smallest singular vectors.
     std::array<LocalMode<Real>, 4> all;
     for (std::size_t i = 0; i < 4; ++i) {
-        const Matrix3c<Real> m = wave_matrix(epsilon, xi, roots[i]);
+        const Matrix3c<Real> m = wave_matrix(local, xi, roots[i]);
         bool double_root = false;
         for (std::size_t j = 0; j < 4; ++j) {
             double_root = double_root || (j != i && magnitude_squared(roots[i] - roots[j]) <= Thresholds<Real>::double_root_squared * magnitude_squared(roots[i]));
@@ -227,7 +265,7 @@ LocalModes<Real> general_modes(const OpticalMedium& medium, double xi_double) {
             const Eigen::JacobiSVD<Matrix3c<Real>> svd(m, Eigen::ComputeFullV);
             bool second = false;
             for (std::size_t j = 0; j < i; ++j) second = second || magnitude_squared(roots[i] - roots[j]) <= Thresholds<Real>::double_root_squared * magnitude_squared(roots[i]);
-            all[i] = complete<Real>(roots[i], xi, svd.matrixV().col(second ? 1 : 2));
+            all[i] = complete<Real>(roots[i], xi, svd.matrixV().col(second ? 1 : 2), active);
             continue;
         }
         Vector3c<Real> null_vector = bilinear_cross<Real>(m.row(0).transpose(), m.row(1).transpose());
@@ -235,7 +273,7 @@ LocalModes<Real> general_modes(const OpticalMedium& medium, double xi_double) {
             const Vector3c<Real> candidate = bilinear_cross<Real>(m.row(a).transpose(), m.row(b).transpose());
             if (candidate.squaredNorm() > null_vector.squaredNorm()) null_vector = candidate;
         }
-        all[i] = complete(roots[i], xi, null_vector);
+        all[i] = complete(roots[i], xi, null_vector, active);
     }
     // Forward: energy toward +z for propagating modes of a lossless medium, otherwise decay toward +z.
     const bool lossless = medium.is_lossless();
@@ -261,11 +299,12 @@ LocalModes<Real> general_modes(const OpticalMedium& medium, double xi_double) {
 
 template <typename Real>
 LocalModes<Real> local_modes(const OpticalMedium& medium, double xi) {
-    if (medium.is_isotropic()) return isotropic_modes<Real>(medium.principal_n[0], xi);
-    // Lossless with four propagating modes: the Biot–Fresnel sheets, exact on the optic axes and well
-    // conditioned near grazing. Otherwise (evanescent or absorbing modes): the quartic and its null vectors.
+    if (medium.has_s_and_p_waves()) return isotropic_modes<Real>(medium.principal_n[0], xi);
+    // Lossless and inactive with four propagating modes: the Biot–Fresnel sheets, exact on the optic axes and
+    // well conditioned near grazing. Otherwise (evanescent or absorbing modes, optical activity): the quartic
+    // and its null vectors.
     LocalModes<Real> modes;
-    if (medium.is_lossless() && propagating_anisotropic_modes(medium, xi, modes)) return modes;
+    if (!medium.is_active() && medium.is_lossless() && propagating_anisotropic_modes(medium, xi, modes)) return modes;
     return general_modes<Real>(medium, xi);
 }
 

@@ -61,7 +61,7 @@ Real poynting_z(const Vector3c<Real>& e_field, const Vector3c<Real>& h_field) {
 template <typename Real>
 struct LocalMode {
     std::complex<Real> q;              // k_z/k₀
-    Vector3c<Real> e_field, h_field;   // H = N × E, N = (ξ, 0, q)
+    Vector3c<Real> e_field, h_field;   // H = N × E (+ iκE, active), N = (ξ, 0, q)
     Real flux_z = 0;                   // ½ Re(E × H*)_z
     bool evanescent = false;
 };
@@ -72,10 +72,12 @@ struct LocalModes {
     std::array<LocalMode<Real>, 2> backward;
 };
 
-/// `medium` must already be expressed in the local frame (its axes rotated). Isotropic media: closed form
-/// with s modes (E ∥ ŷ) and p modes (E ∥ ŝ × k̂); lossless anisotropic media with propagating modes: the
-/// Biot–Fresnel sheets of optics/slab.hpp (exact on the optic axes); otherwise (evanescent or absorbing):
-/// the roots of the quartic det(ε + NNᵀ − N²I) = 0 polished by Newton, with null vectors by SVD.
+/// `medium` must already be expressed in the local frame (its axes rotated). Isotropic inactive media: closed
+/// form with s modes (E ∥ ŷ) and p modes (E ∥ ŝ × k̂); lossless inactive anisotropic media with propagating
+/// modes: the Biot–Fresnel sheets of optics/slab.hpp (exact on the optic axes); otherwise (evanescent or
+/// absorbing modes, optically active media): the roots of the quartic det(ε + NNᵀ − N²I + i[(g·N)×]) = 0
+/// polished by Newton, with null vectors from the rows of the wave matrix (by SVD at a double root). An active
+/// medium's H is N × E + iκE (optics/gyration.hpp).
 template <typename Real>
 LocalModes<Real> local_modes(const OpticalMedium& medium, double xi);
 

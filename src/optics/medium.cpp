@@ -1,5 +1,7 @@
 #include "petroscope/optics/medium.hpp"
 
+#include "petroscope/optics/gyration.hpp"
+
 namespace petroscope {
 
 OpticalMedium OpticalMedium::isotropic(std::complex<double> n) {
@@ -32,5 +34,7 @@ Eigen::Matrix3cd OpticalMedium::permittivity() const {
     }
     return symmetric;
 }
+
+Eigen::Matrix3d OpticalMedium::lab_gyration() const { return turned_gyration(gyration, axes); }
 
 }  // namespace petroscope

@@ -3,6 +3,7 @@
 #include "petroscope/core/angles.hpp"
 
 #include "petroscope/optics/berreman.hpp"
+#include "petroscope/optics/gyration.hpp"
 #include "petroscope/optics/indicatrix.hpp"
 #include "petroscope/optics/interface.hpp"
 
@@ -218,7 +219,7 @@ InterfaceIncidence random_incidence(std::mt19937_64& rng, const OpticalMedium& m
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     InterfaceIncidence incidence;
     incidence.direction = direction;
-    if (!medium1.is_isotropic()) {
+    if (!medium1.has_s_and_p_waves()) {
         incidence.mode = unit(rng) < 0.5 ? InterfaceMode::fast : InterfaceMode::slow;
     } else {
         const Eigen::Vector3d axis = unit_vector(rng) * unit(rng);  // partially polarized
@@ -284,6 +285,78 @@ VerificationTest near_optic_axis(int cases) {
     return test;
 }
 
+// The 4×4 stack solver's answer for the interface's incident wave: the same tangential field, with ξ from the
+// interface solution. `jones`: the incident state when medium 1 has s and p waves; otherwise the incident wave is
+// medium 1's forward mode with the interface's incident index.
+StackResponse stack_response(const InterfaceResult& result, const Eigen::Vector3d& direction, const OpticalMedium& medium1,
+                             const OpticalMedium& medium2, const JonesVector& jones) {
+    const Eigen::Vector2d xi = result.incident_n.real() * direction.head<2>();
+    const StackLayer ambient{medium1.permittivity(), 0.0, chirality_tensor(medium1.lab_gyration())};
+    const StackLayer substrate{medium2.permittivity(), 0.0, chirality_tensor(medium2.lab_gyration())};
+    const auto modes = berreman_modes(ambient.epsilon, ambient.chirality, xi);
+    Eigen::Vector4cd incident_psi;
+    if (medium1.has_s_and_p_waves()) {
+        incident_psi = jones[0] * modes[0].psi + jones[1] * modes[1].psi;
+    } else {
+        const auto index = [&](const BerremanMode& mode) { return std::abs(std::sqrt(xi.squaredNorm() + mode.q * mode.q) - result.incident_n); };
+        incident_psi = index(modes[0]) <= index(modes[1]) ? modes[0].psi : modes[1].psi;
+    }
+    return solve_stack(ambient, {}, substrate, 589.3, xi, incident_psi);
+}
+
+// The largest difference between the interface solver's and the stack solver's wave powers. Compared per
+// medium: a medium's s and p waves are one wave here; otherwise the two modes, matched by sorting their powers
+// (the solvers order evanescent modes differently). Where the two modes' q nearly meet (an optic axis), how the
+// power splits between them is ill-conditioned (the modes' fields move by about the rounding over the
+// separation: Golub & Van Loan §7.2.4), and the double-precision 4×4 solver's split is good only to
+// ~1e-16/separation: there the pair's total is compared, and `near_degenerate` counts it.
+double power_difference(const InterfaceResult& result, const StackResponse& stack, const OpticalMedium& medium1, const OpticalMedium& medium2,
+                        int& near_degenerate) {
+    // Mode pairs whose q differ by less than this are compared by their total power.
+    constexpr double kNearlyDegenerate = 1e-4;
+    double worst = 0.0;
+    const auto compare = [&](Kind kind, std::array<double, 2> berreman_power, const std::array<BerremanMode, 2>& modes, bool s_and_p) {
+        std::vector<double> mine;
+        for (const InterfaceWave& wave : result.waves) {
+            if (wave.kind == kind) mine.push_back(wave.power);
+        }
+        const bool degenerate = !s_and_p && std::abs(modes[0].q - modes[1].q) < kNearlyDegenerate;
+        if (s_and_p || degenerate) {
+            near_degenerate += degenerate ? 1 : 0;
+            worst = std::max(worst, std::abs(std::accumulate(mine.begin(), mine.end(), 0.0) - (berreman_power[0] + berreman_power[1])));
+            return;
+        }
+        std::sort(mine.begin(), mine.end());
+        std::sort(berreman_power.begin(), berreman_power.end());
+        worst = std::max({worst, std::abs(mine.at(0) - berreman_power[0]), std::abs(mine.at(1) - berreman_power[1])});
+    };
+    compare(Kind::reflected, stack.reflected_power, stack.reflected_modes, medium1.has_s_and_p_waves());
+    compare(Kind::transmitted, stack.transmitted_power, stack.transmitted_modes, medium2.has_s_and_p_waves());
+    return worst;
+}
+
+JonesVector random_jones(std::mt19937_64& rng) {
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    JonesVector jones(std::complex<double>(unit(rng) - 0.5, unit(rng) - 0.5), std::complex<double>(unit(rng) - 0.5, unit(rng) - 0.5));
+    return jones.normalized();
+}
+
+// A random incidence up to 85° from the normal z, and the wave: a random Jones vector, or a crystal mode.
+std::pair<InterfaceIncidence, JonesVector> random_polarized_incidence(std::mt19937_64& rng, const OpticalMedium& medium1) {
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const double theta = 85.0 * kDegree * unit(rng), phi = 2 * std::numbers::pi * unit(rng);
+    const Eigen::Vector3d direction(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+    InterfaceIncidence incidence;
+    incidence.direction = direction;
+    const JonesVector jones = random_jones(rng);
+    if (medium1.has_s_and_p_waves()) {
+        incidence = polarized(direction, jones);
+    } else {
+        incidence.mode = unit(rng) < 0.5 ? InterfaceMode::fast : InterfaceMode::slow;
+    }
+    return {incidence, jones};
+}
+
 VerificationTest against_berreman(int cases) {
     VerificationTest test{"interface-vs-4x4",
                           "The interface solver (modes from the Biot–Fresnel sheets or the quartic, boundary conditions solved directly) and "
@@ -292,60 +365,14 @@ VerificationTest against_berreman(int cases) {
                           "petroscope; Berreman, JOSA 62, 502 (1972)",
                           {}};
     std::mt19937_64 rng(4242);
-    std::uniform_real_distribution<double> unit(0.0, 1.0);
-    // Mode pairs whose q differ by less than this are compared by their total power.
-    constexpr double kNearlyDegenerate = 1e-4;
     double worst = 0.0;
     int compared = 0, near_degenerate = 0;
     for (int i = 0; i < cases; ++i) {
         const OpticalMedium medium1 = random_medium(rng, static_cast<int>(rng() % 3));
         const OpticalMedium medium2 = random_medium(rng, static_cast<int>(rng() % 3));
-        const double theta = 85.0 * kDegree * unit(rng), phi = 2 * std::numbers::pi * unit(rng);
-        const Eigen::Vector3d direction(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
-        InterfaceIncidence incidence;
-        incidence.direction = direction;
-        JonesVector jones(std::complex<double>(unit(rng) - 0.5, unit(rng) - 0.5), std::complex<double>(unit(rng) - 0.5, unit(rng) - 0.5));
-        jones.normalize();
-        if (medium1.is_isotropic()) {
-            incidence = polarized(direction, jones);
-        } else {
-            incidence.mode = unit(rng) < 0.5 ? InterfaceMode::fast : InterfaceMode::slow;
-        }
+        const auto [incidence, jones] = random_polarized_incidence(rng, medium1);
         const InterfaceResult result = solve_interface({0, 0, 1}, incidence, medium1, medium2);
-        // The same incident wave as Berreman's tangential field: ξ from the interface solution.
-        const Eigen::Vector2d xi = result.incident_n.real() * direction.head<2>();
-        const auto ambient = berreman_modes(medium1.permittivity(), xi);
-        Eigen::Vector4cd incident_psi;
-        if (medium1.is_isotropic()) {
-            incident_psi = jones[0] * ambient[0].psi + jones[1] * ambient[1].psi;
-        } else {
-            // The forward mode with the incident index.
-            const auto index = [&](const BerremanMode& mode) { return std::abs(std::sqrt(xi.squaredNorm() + mode.q * mode.q) - result.incident_n); };
-            incident_psi = index(ambient[0]) <= index(ambient[1]) ? ambient[0].psi : ambient[1].psi;
-        }
-        const StackResponse stack = solve_stack(medium1.permittivity(), {}, medium2.permittivity(), 589.3, xi, incident_psi);
-        // Compare per medium: an isotropic medium's s and p waves are one wave here; otherwise the two modes,
-        // matched by sorting their powers (the solvers order evanescent modes differently). Where the two
-        // modes' q nearly meet (an optic axis), how the power splits between them is ill-conditioned (the
-        // modes' fields move by about the rounding over the separation: Golub & Van Loan §7.2.4), and the
-        // double-precision 4×4 solver's split is good only to ~1e-16/separation: there the pair's total is compared.
-        const auto compare = [&](Kind kind, std::array<double, 2> berreman_power, const std::array<BerremanMode, 2>& modes, bool isotropic) {
-            std::vector<double> mine;
-            for (const InterfaceWave& wave : result.waves) {
-                if (wave.kind == kind) mine.push_back(wave.power);
-            }
-            const bool degenerate = !isotropic && std::abs(modes[0].q - modes[1].q) < kNearlyDegenerate;
-            if (isotropic || degenerate) {
-                near_degenerate += degenerate ? 1 : 0;
-                worst = std::max(worst, std::abs(std::accumulate(mine.begin(), mine.end(), 0.0) - (berreman_power[0] + berreman_power[1])));
-                return;
-            }
-            std::sort(mine.begin(), mine.end());
-            std::sort(berreman_power.begin(), berreman_power.end());
-            worst = std::max({worst, std::abs(mine.at(0) - berreman_power[0]), std::abs(mine.at(1) - berreman_power[1])});
-        };
-        compare(Kind::reflected, stack.reflected_power, stack.reflected_modes, medium1.is_isotropic());
-        compare(Kind::transmitted, stack.transmitted_power, stack.transmitted_modes, medium2.is_isotropic());
+        worst = std::max(worst, power_difference(result, stack_response(result, incidence.direction, medium1, medium2, jones), medium1, medium2, near_degenerate));
         ++compared;
     }
     test.check("max |power difference| over " + std::to_string(compared) + " cases (" + std::to_string(near_degenerate) +
@@ -354,12 +381,87 @@ VerificationTest against_berreman(int cases) {
     return test;
 }
 
+// Quartz's gyration along its axis at 589.3 nm: g₃₃ = λρ/π with ρ = 21.72°/mm (Lowry 1912).
+constexpr double kQuartzGyration = 0.5893 * 21.72e-3 / 180.0;
+
+// A random optically active medium: isotropic (g = g₀I), uniaxial (diag(g₁, g₁, g₃) in its frame) or biaxial
+// (any symmetric g in its frame), gyrations from once to 100 times quartz's, of either sign.
+OpticalMedium random_active_medium(std::mt19937_64& rng, int kind) {
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    OpticalMedium medium = random_medium(rng, kind);
+    const auto random_gyration = [&] { return (unit(rng) < 0.5 ? -1.0 : 1.0) * kQuartzGyration * std::pow(100.0, unit(rng)); };
+    if (kind == 0) {
+        medium.gyration = random_gyration() * Eigen::Matrix3d::Identity();
+    } else if (kind == 1) {
+        const double g1 = random_gyration();
+        medium.gyration = Eigen::Vector3d(g1, g1, random_gyration()).asDiagonal();
+    } else {
+        Eigen::Matrix3d g;
+        for (int i = 0; i < 3; ++i) {
+            for (int j = 0; j <= i; ++j) g(i, j) = g(j, i) = random_gyration();
+        }
+        medium.gyration = g;
+    }
+    return medium;
+}
+
+VerificationTest optically_active(int cases) {
+    VerificationTest test{"optically-active",
+                          "Interfaces with optically active media (Landau's relation D = εE + i(g·N) × E, as Berreman's bianisotropic "
+                          "relations). (1) A quartz-like uniaxial crystal (n_o = 1.5443, n_e = 1.5534, g₃₃ = 7.1e-5 and 100 times that, "
+                          "g₁₁ = −g₃₃/2, both hands), its optic axis along the normal, normal incidence from vacuum, s-polarized: the two "
+                          "transmitted waves are circular with the indices n̄ ∓ g₃₃/2, n̄ = √(n_o² + g₃₃²/4); both have the admittance n̄, so "
+                          "R = ((n̄ − 1)/(n̄ + 1))² and each carries (1 − R)/2; the fast one is right circular for g₃₃ > 0 (dextrorotatory, "
+                          "docs/conventions.md). (2) Random lossless media, active on one side or both (isotropic, uniaxial or biaxial, "
+                          "gyrations 1–100 times quartz's), random incidences up to 85°, crystal modes or random polarizations: R + T = 1, "
+                          "and every wave's power equals the independent 4×4 solver's.",
+                          "Landau & Lifshitz vol. 8 §§100–101; Berreman, JOSA 62, 502 (1972)",
+                          {}};
+    const double n_o = 1.5443, n_e = 1.5534;
+    double worst_index = 0.0, worst_power = 0.0, worst_circularity = 0.0;
+    for (const double g33 : {kQuartzGyration, -kQuartzGyration, 100 * kQuartzGyration, -100 * kQuartzGyration}) {
+        OpticalMedium quartz{Eigen::Vector3cd(n_o, n_o, n_e)};
+        quartz.gyration = Eigen::Vector3d(-g33 / 2, -g33 / 2, g33).asDiagonal();
+        const InterfaceResult result = solve_interface({0, 0, 1}, polarized({0, 0, 1}, JonesVector(1, 0)), OpticalMedium::isotropic(1.0), quartz);
+        const double n_bar = std::hypot(n_o, g33 / 2), reflectance = std::pow((n_bar - 1) / (n_bar + 1), 2);
+        const InterfaceWave& fast = *wave_of(result, Kind::transmitted, InterfaceMode::fast);
+        const InterfaceWave& slow = *wave_of(result, Kind::transmitted, InterfaceMode::slow);
+        worst_index = std::max({worst_index, std::abs(fast.n - (n_bar - std::abs(g33) / 2)), std::abs(slow.n - (n_bar + std::abs(g33) / 2))});
+        worst_power = std::max({worst_power, std::abs(wave_of(result, Kind::reflected)->power - reflectance), std::abs(fast.power - (1 - reflectance) / 2),
+                                std::abs(slow.power - (1 - reflectance) / 2)});
+        const double sense = g33 > 0 ? 1.0 : -1.0;  // S3 = +S0: right circular
+        worst_circularity = std::max({worst_circularity, std::abs(fast.stokes[3] / fast.stokes[0] - sense), std::abs(slow.stokes[3] / slow.stokes[0] + sense)});
+    }
+    test.check("max |index − n̄ ∓ g₃₃/2| along the axis", worst_index, 0.0, 1e-12);
+    test.check("max |power − closed form| along the axis", worst_power, 0.0, 1e-12);
+    test.check("max |S3/S0 ∓ 1| of the transmitted waves (fast: right for g₃₃ > 0)", worst_circularity, 0.0, 1e-12);
+
+    std::mt19937_64 rng(1972);
+    double worst_energy = 0.0, worst_difference = 0.0;
+    int near_degenerate = 0;
+    for (int i = 0; i < cases; ++i) {
+        // Active medium 2, active medium 1, or both.
+        const int sides = i % 3;
+        const int kind1 = static_cast<int>(rng() % 3), kind2 = static_cast<int>(rng() % 3);
+        const OpticalMedium medium1 = sides == 0 ? random_medium(rng, kind1) : random_active_medium(rng, kind1);
+        const OpticalMedium medium2 = sides == 1 ? random_medium(rng, kind2) : random_active_medium(rng, kind2);
+        const auto [incidence, jones] = random_polarized_incidence(rng, medium1);
+        const InterfaceResult result = solve_interface({0, 0, 1}, incidence, medium1, medium2);
+        worst_energy = std::max(worst_energy, std::abs(total_power(result) - 1.0));
+        worst_difference = std::max(worst_difference, power_difference(result, stack_response(result, incidence.direction, medium1, medium2, jones), medium1, medium2, near_degenerate));
+    }
+    test.check("max |R + T − 1| over " + std::to_string(cases) + " random cases", worst_energy, 0.0, 1e-12);
+    test.check("max |power difference| from the 4×4 solver (" + std::to_string(near_degenerate) + " nearly degenerate pairs compared by their total)",
+               worst_difference, 0.0, 1e-10);
+    return test;
+}
+
 }  // namespace
 
 std::vector<VerificationTest> run_interface_suite(const InterfaceSuiteSize& size) {
     return {fresnel_and_snell(),       total_internal_reflection(),          brewster(),
             uniaxial_laws(size.uniaxial_cases), random_energy(size.random_energy_cases), near_optic_axis(size.near_axis_cases),
-            against_berreman(size.berreman_cases)};
+            against_berreman(size.berreman_cases), optically_active(size.optically_active_cases)};
 }
 
 }  // namespace petroscope

@@ -95,4 +95,9 @@ StackResponse solve_stack(const Eigen::Matrix3cd& ambient, const std::vector<Sta
                           const Eigen::Matrix3cd& substrate, double wavelength_nm, const Eigen::Vector2d& xi,
                           const Eigen::Vector4cd& incident_psi);
 
+/// The same with optically active half-spaces: the ambient's and the substrate's ε and chirality κ (their
+/// thicknesses are not used).
+StackResponse solve_stack(const StackLayer& ambient, const std::vector<StackLayer>& layers, const StackLayer& substrate,
+                          double wavelength_nm, const Eigen::Vector2d& xi, const Eigen::Vector4cd& incident_psi);
+
 }  // namespace petroscope

@@ -1,7 +1,7 @@
 #pragma once
 // The exact local model of a plane wave meeting a plane interface between two homogeneous media
-// (isotropic or anisotropic, lossless or absorbing): every reflected and transmitted wave with its
-// direction, ray, index, amplitude, power and polarization. Conventions: docs/interface.md.
+// (isotropic or anisotropic, lossless or absorbing, optically active or not): every reflected and transmitted
+// wave with its direction, ray, index, amplitude, power and polarization. Conventions: docs/interface.md.
 #include "petroscope/optics/medium.hpp"
 #include "petroscope/optics/polarization.hpp"
 
@@ -15,8 +15,8 @@
 namespace petroscope {
 
 /// Which mode a wave is: the one (s+p) wave of an isotropic medium, the fast/slow eigenmodes (by Re n) of
-/// a biaxial one, the ordinary/extraordinary ones of a uniaxial one. (Not eigenmodes.hpp's WaveMode, a
-/// mode's index and fields.)
+/// a biaxial one or of an optically active one (elliptical waves), the ordinary/extraordinary ones of an
+/// inactive uniaxial one. (Not eigenmodes.hpp's WaveMode, a mode's index and fields.)
 enum class InterfaceMode { isotropic, fast, slow, ordinary, extraordinary };
 
 /// The mode's name in files and output: "s+p", "fast", "slow", "ordinary", "extraordinary".
@@ -37,8 +37,8 @@ struct InterfaceIncidence {
     CoherencyMatrix coherency = CoherencyMatrix::Identity() * 0.5;
     /// Isotropic medium 1, fully polarized light: the Jones vector, so that output amplitudes are reported.
     std::optional<JonesVector> jones;
-    /// Anisotropic medium 1 (required): the incident eigenmode, fast or slow, or for a uniaxial medium
-    /// ordinary or extraordinary.
+    /// Anisotropic or optically active medium 1 (required): the incident eigenmode, fast or slow, or for an
+    /// inactive uniaxial medium ordinary or extraordinary.
     std::optional<InterfaceMode> mode;
     /// Isotropic medium 1: also give every wave its Mueller matrix (InterfaceWave::mueller), at the cost of
     /// four more evaluations of each wave's Stokes vector.
@@ -69,7 +69,8 @@ struct InterfaceWave {
     /// field (phase: the largest component of the field is real and positive); `e_field` is that field.
     std::optional<std::complex<double>> amplitude;
     Eigen::Vector3cd e_field = Eigen::Vector3cd::Zero();
-    /// Anisotropic mode: its unit vibration direction D (sign free); zero for an isotropic wave.
+    /// Anisotropic mode: its unit vibration direction D (sign free); zero for an isotropic wave and for the
+    /// elliptical waves of an optically active medium (their ellipse: `stokes`, `e_field`).
     Eigen::Vector3d d_direction = Eigen::Vector3d::Zero();
     bool evanescent = false;
 };

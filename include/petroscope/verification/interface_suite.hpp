@@ -11,6 +11,7 @@ struct InterfaceSuiteSize {
     int random_energy_cases = 100000;    // R + T = 1 over random media, orientations, incidences
     int near_axis_cases = 10000;         // incidence within 1e-9 rad of an optic axis, exactly on it included
     int berreman_cases = 2000;           // interface solver against the 4×4 transfer-matrix solver
+    int optically_active_cases = 2000;   // optically active media: R + T = 1 and the 4×4 solver
     int uniaxial_cases = 2000;           // Snell's law of the ordinary wave, parallel exit from a slab
 };
 
