@@ -174,6 +174,11 @@ InterfaceCase parse_interface_case(const nlohmann::json& document, const std::st
         throw incident["direction"].error("the incident wave must travel from medium 1 into medium 2 (positive component along \"normal\")");
     }
     parse_polarization(incident["polarization"], !result.medium1.has_s_and_p_waves(), result.incidence);
+    const bool named_by_axis = result.medium1.is_uniaxial() && !result.medium1.is_active();
+    if (!named_by_axis && (result.incidence.mode == InterfaceMode::ordinary || result.incidence.mode == InterfaceMode::extraordinary)) {
+        throw incident["polarization"].error(std::string(result.medium1.is_active() ? "medium 1 is optically active" : "medium 1 is biaxial") +
+                                             ": expected \"fast\" or \"slow\" (\"ordinary\" and \"extraordinary\" name the waves of an inactive uniaxial crystal)");
+    }
     return result;
 }
 

@@ -36,17 +36,19 @@ struct LocalMedium {
 };
 
 // Thresholds that depend on the arithmetic: the relative separation (squared) below which two roots of the
-// quartic are one double root, and the relative |Im q| below which a mode of a lossless medium
-// propagates. Newton's method finds a double root to about √ε, so double needs looser ones.
+// quartic are one double root, the relative |Im q| below which a mode of a lossless medium propagates, and for
+// a lossless active medium (see general_modes) the relative |Im q| below which a root is real and the relative
+// separation below which two roots are one double root (about √ε: Newton's accuracy at a double root). Double
+// needs looser ones.
 template <typename Real>
 struct Thresholds;
 template <>
 struct Thresholds<long double> {
-    static constexpr long double double_root_squared = 1e-20L, propagating = 1e-12L;
+    static constexpr long double double_root_squared = 1e-20L, propagating = 1e-12L, nearly_real = 1e-7L, active_double_root = 1e-9L;
 };
 template <>
 struct Thresholds<double> {
-    static constexpr double double_root_squared = 1e-16, propagating = 1e-7;
+    static constexpr double double_root_squared = 1e-16, propagating = 1e-7, nearly_real = 1e-7, active_double_root = 1e-7;
 };
 
 // A polynomial in q with complex coefficients, lowest degree first (degree ≤ 4 here).
@@ -201,9 +203,9 @@ std::complex<Real> determinant_full_pivoting(Matrix3c<Real> a) {
 }
 
 // The roots of det M(q) = 0, a quartic, for any medium: the eigenvalues of its companion matrix (double is
-// enough for starting values), polished by Newton in `Real`.
+// enough for starting values), polished by Newton in `Real`. `real_on_axis`: det M is real for real q.
 template <typename Real>
-std::array<std::complex<Real>, 4> quartic_roots(const LocalMedium<Real>& medium, Real xi) {
+std::array<std::complex<Real>, 4> quartic_roots(const LocalMedium<Real>& medium, Real xi, bool real_on_axis) {
     const auto x = [&](int i, int j) { return medium.epsilon(i, j); };
     // The components of i(g·N) = i(ξ g₀ + q g₂), linear in q (zero for an inactive medium).
     const auto i_g = [&](int c) {
@@ -221,27 +223,62 @@ std::array<std::complex<Real>, 4> quartic_roots(const LocalMedium<Real>& medium,
         companion(i, 3) = complex(static_cast<double>(coefficient.real()), static_cast<double>(coefficient.imag()));
     }
     Eigen::ComplexEigenSolver<Eigen::Matrix4cd> solver(companion, false);
-    std::array<std::complex<Real>, 4> roots;
-    for (int i = 0; i < 4; ++i) {
-        std::complex<Real> q(solver.eigenvalues()[i].real(), solver.eigenvalues()[i].imag());
-        for (int step = 0; step < 6; ++step) {
+    // Newton from q: `steps` on the coefficient form, then on det M(q) by a pivoted LU. The coefficient form
+    // cancels to about 1e-17 near nearly-double roots (close sheets); the LU is backward stable, so a few
+    // steps on it make q exact to rounding. Returns the root and |det M| there.
+    const auto polish = [&](std::complex<Real> q, int steps) {
+        for (int step = 0; step < steps; ++step) {
             std::complex<Real> slope;
             const std::complex<Real> value = determinant(q, &slope);
             if (std::abs(slope) == Real(0)) break;
-            q -= value / slope;
+            const std::complex<Real> change = value / slope;
+            q -= change;
+            if (std::abs(change) <= std::numeric_limits<Real>::epsilon() * std::abs(q)) break;
         }
-        // The coefficient form cancels to about 1e-17 near nearly-double roots (close sheets); det M(q) by a
-        // pivoted LU is backward stable, so a few more Newton steps on it make q exact to rounding.
+        std::complex<Real> value = Real(0);
         for (int step = 0; step < 3; ++step) {
             std::complex<Real> slope;
             determinant(q, &slope);
-            const std::complex<Real> value = determinant_full_pivoting(wave_matrix(medium, xi, q));
+            value = determinant_full_pivoting(wave_matrix(medium, xi, q));
             if (std::abs(slope) == Real(0)) break;
             q -= value / slope;
+        }
+        return std::pair{q, std::abs(value)};
+    };
+    std::array<std::complex<Real>, 4> roots;
+    for (int i = 0; i < 4; ++i) {
+        const std::complex<Real> start(solver.eigenvalues()[i].real(), solver.eigenvalues()[i].imag());
+        auto [q, residual] = polish(start, 6);
+        // A lossless active medium's det M(q) is real on the real axis (M is Hermitian there), so its roots are
+        // real or conjugate pairs. Two close real roots can come out of the double-precision eigenvalues as a
+        // conjugate pair a ± ib, on the boundary between Newton's basins of the two roots. Started on the real
+        // axis, outward at a ± 2b, Newton converges to each real root (linearly, as at a double root, so with more
+        // steps); the start with the smaller |det M| wins.
+        if (real_on_axis && std::abs(start.imag()) <= Real(1e-5) * std::max(Real(1), std::abs(start))) {
+            const auto [real_q, real_residual] = polish(std::complex<Real>(start.real() + Real(2) * start.imag(), Real(0)), 80);
+            if (real_residual <= residual) q = real_q;
         }
         roots[static_cast<std::size_t>(i)] = q;
     }
     return roots;
+}
+
+// The roots of a polynomial that is real on the real axis, those within rounding of it made real: a root whose
+// |Im q| is below Thresholds::nearly_real (relative), and the member of a conjugate pair whose other member is.
+template <typename Real>
+std::array<std::complex<Real>, 4> real_within_rounding(const std::array<std::complex<Real>, 4>& roots) {
+    const auto tolerance = [](const std::complex<Real>& q) { return Thresholds<Real>::nearly_real * std::max(Real(1), std::abs(q)); };
+    const auto nearly_real = [&](const std::complex<Real>& q) { return std::abs(q.imag()) <= tolerance(q); };
+    std::array<std::complex<Real>, 4> result = roots;
+    for (std::size_t i = 0; i < 4; ++i) {
+        bool real = nearly_real(roots[i]);
+        for (std::size_t j = 0; j < 4; ++j) {
+            const bool conjugates = std::abs(roots[i] - std::conj(roots[j])) <= Real(2) * tolerance(roots[i]);
+            real = real || (j != i && conjugates && nearly_real(roots[j]));
+        }
+        if (real) result[i] = roots[i].real();
+    }
+    return result;
 }
 
 // General medium: the roots of the quartic, their null vectors, forward and backward.
@@ -250,22 +287,32 @@ LocalModes<Real> general_modes(const OpticalMedium& medium, double xi_double) {
     const LocalMedium<Real> local(medium);
     const LocalMedium<Real>* active = local.active ? &local : nullptr;
     const Real xi = xi_double;
-    const std::array<std::complex<Real>, 4> roots = quartic_roots(local, xi);
+    const bool lossless = medium.is_lossless();
+    std::array<std::complex<Real>, 4> roots = quartic_roots(local, xi, active && lossless);
+    // A lossless active medium's M(q) is Hermitian for real q, so det M(q) is real there and its roots are real
+    // or conjugate pairs. Where the gyration barely splits the two waves of a direction, two close real roots
+    // come out of the rounding as a pair with imaginary parts of about √ε (Newton's accuracy at a double
+    // root): within that they are real, and a pair that close is one double root.
+    Real double_root_squared = Thresholds<Real>::double_root_squared;
+    if (active && lossless) {
+        roots = real_within_rounding(roots);
+        double_root_squared = Thresholds<Real>::active_double_root * Thresholds<Real>::active_double_root;
+    }
     // Null vectors: of a simple root, M(q) has rank 2 and its null vector is the (unconjugated) cross
     // product of two of its rows, the largest of the three; a double root (degenerate modes) takes the two
-    // smallest singular vectors.
+    // smallest singular vectors of M at the pair's mean, one each.
     std::array<LocalMode<Real>, 4> all;
     for (std::size_t i = 0; i < 4; ++i) {
         const Matrix3c<Real> m = wave_matrix(local, xi, roots[i]);
-        bool double_root = false;
-        for (std::size_t j = 0; j < 4; ++j) {
-            double_root = double_root || (j != i && magnitude_squared(roots[i] - roots[j]) <= Thresholds<Real>::double_root_squared * magnitude_squared(roots[i]));
+        std::size_t partner = i;
+        for (std::size_t j = 0; j < 4 && partner == i; ++j) {
+            if (j != i && magnitude_squared(roots[i] - roots[j]) <= double_root_squared * magnitude_squared(roots[i])) partner = j;
         }
-        if (double_root) {
-            const Eigen::JacobiSVD<Matrix3c<Real>> svd(m, Eigen::ComputeFullV);
-            bool second = false;
-            for (std::size_t j = 0; j < i; ++j) second = second || magnitude_squared(roots[i] - roots[j]) <= Thresholds<Real>::double_root_squared * magnitude_squared(roots[i]);
-            all[i] = complete<Real>(roots[i], xi, svd.matrixV().col(second ? 1 : 2), active);
+        if (partner != i) {
+            // The pair's two-dimensional near-null space, M's two smallest singular vectors at the pair's mean,
+            // one each.
+            const Eigen::JacobiSVD<Matrix3c<Real>> svd(wave_matrix(local, xi, (roots[i] + roots[partner]) / Real(2)), Eigen::ComputeFullV);
+            all[i] = complete<Real>(roots[i], xi, svd.matrixV().col(partner < i ? 1 : 2), active);
             continue;
         }
         Vector3c<Real> null_vector = bilinear_cross<Real>(m.row(0).transpose(), m.row(1).transpose());
@@ -276,7 +323,6 @@ LocalModes<Real> general_modes(const OpticalMedium& medium, double xi_double) {
         all[i] = complete(roots[i], xi, null_vector, active);
     }
     // Forward: energy toward +z for propagating modes of a lossless medium, otherwise decay toward +z.
-    const bool lossless = medium.is_lossless();
     const auto toward_plus_z = [lossless](LocalMode<Real>& mode) {
         const Real scale = std::max(Real(1), std::abs(mode.q));
         mode.evanescent = lossless ? std::abs(mode.q.imag()) > Thresholds<Real>::propagating * scale : std::abs(mode.q.real()) < Thresholds<Real>::propagating * scale;

@@ -311,6 +311,18 @@ TEST_F(Cli, InterfaceRejectsBadCasesNamingTheKey) {
          {"mineral.json", "medium2.mineral", "calcite"}},
         {"nan.json", R"({"wavelength_nm": 589.3, "normal": [0,0,"x"], )" + good_incident + R"(, "medium1": {"n": 1}, "medium2": {"n": 1.5}})",
          {"nan.json", "normal[2]", "expected a number"}},
+        {"hand-inactive.json", R"({"wavelength_nm": 589.3, "normal": [0,0,1], )" + good_incident + R"(, "medium1": {"n": 1}, "medium2": {"mineral": "calcite", "handedness": "left"}})",
+         {"hand-inactive.json", "medium2.handedness", "not optically active"}},
+        {"hand-value.json", R"({"wavelength_nm": 589.3, "normal": [0,0,1], )" + good_incident + R"(, "medium1": {"n": 1}, "medium2": {"mineral": "quartz", "handedness": "sideways"}})",
+         {"hand-value.json", "medium2.handedness", "expected right or left"}},
+        {"hand-index.json", R"({"wavelength_nm": 589.3, "normal": [0,0,1], )" + good_incident + R"(, "medium1": {"n": 1}, "medium2": {"n": 1.5, "handedness": "right"}})",
+         {"hand-index.json", "medium2.handedness", "rotatory_power_deg_per_mm"}},
+        {"rho-mineral.json", R"({"wavelength_nm": 589.3, "normal": [0,0,1], )" + good_incident + R"(, "medium1": {"n": 1}, "medium2": {"mineral": "quartz", "rotatory_power_deg_per_mm": [1, 1, 1]}})",
+         {"rho-mineral.json", "medium2.rotatory_power_deg_per_mm", "record"}},
+        {"rho-range.json", R"({"wavelength_nm": 589.3, "normal": [0,0,1], )" + good_incident + R"(, "medium1": {"n": 1}, "medium2": {"n": 1.5, "rotatory_power_deg_per_mm": [1e4, 0, 0]}})",
+         {"rho-range.json", "medium2.rotatory_power_deg_per_mm", "1000"}},
+        {"active-mode.json", R"({"wavelength_nm": 589.3, "normal": [0,0,1], "incident": {"direction": [0,0,1], "polarization": "ordinary"}, "medium1": {"mineral": "quartz"}, "medium2": {"n": 1}})",
+         {"active-mode.json", "incident.polarization", "optically active", "\"fast\" or \"slow\""}},
     };
     for (const auto& [name, text, expected] : cases) {
         SCOPED_TRACE(name);
