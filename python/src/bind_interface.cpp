@@ -3,6 +3,7 @@
 #include "convert.hpp"
 
 #include "petroscope/core/text.hpp"
+#include "petroscope/optics/gyration.hpp"
 #include "petroscope/optics/interface.hpp"
 #include "petroscope/optics/orientation.hpp"
 
@@ -48,6 +49,21 @@ void set_polarization(const py::object& polarization, InterfaceIncidence& incide
     incidence.coherency = coherency_from_jones(*incidence.jones / incidence.jones->norm());
 }
 
+// Landau's gyration tensor in the indicatrix frame: none, three principal values along X, Y, Z, or a symmetric
+// 3 × 3 matrix.
+Eigen::Matrix3d gyration_argument(const py::object& gyration) {
+    if (gyration.is_none()) return Eigen::Matrix3d::Zero();
+    Eigen::Matrix3d g;
+    if (py::len(gyration) == 3 && !py::isinstance<py::sequence>(gyration[py::int_(0)])) {
+        const auto principal = gyration.cast<std::array<double, 3>>();
+        g = Eigen::Vector3d(principal[0], principal[1], principal[2]).asDiagonal();
+    } else {
+        g = gyration.cast<Eigen::Matrix3d>();
+    }
+    if (!g.allFinite() || !(g - g.transpose()).isZero(0.0)) throw py::value_error("gyration: expected finite values along X, Y, Z or a symmetric 3 × 3 matrix");
+    return g;
+}
+
 InterfaceArithmetic arithmetic_argument(const std::string& name) {
     if (name == "long_double") return InterfaceArithmetic::long_double;
     if (name == "double") return InterfaceArithmetic::double_precision;
@@ -75,34 +91,50 @@ InterfaceResult interface(const OpticalMedium& medium1, const OpticalMedium& med
 
 void bind_interface(py::module_& module) {
     py::class_<OpticalMedium>(module, "Medium", "A homogeneous medium: principal indices n + iκ along its indicatrix axes X, Y, Z.")
-        .def(py::init([](const py::object& n, std::array<double, 3> angles_deg) {
-                 const Eigen::Matrix3d axes = axes_argument(angles_deg);
+        .def(py::init([](const py::object& n, std::array<double, 3> angles_deg, const py::object& gyration) {
+                 OpticalMedium medium;
+                 medium.axes = axes_argument(angles_deg);
                  if (py::isinstance<py::float_>(n) || py::isinstance<py::int_>(n) || PyComplex_Check(n.ptr())) {
-                     return OpticalMedium{Eigen::Vector3cd::Constant(n.cast<complex>()), axes};
+                     medium.principal_n = Eigen::Vector3cd::Constant(n.cast<complex>());
+                 } else {
+                     const auto principal = n.cast<std::array<complex, 3>>();
+                     medium.principal_n = Eigen::Vector3cd(principal[0], principal[1], principal[2]);
                  }
-                 const auto principal = n.cast<std::array<complex, 3>>();
-                 return OpticalMedium{Eigen::Vector3cd(principal[0], principal[1], principal[2]), axes};
+                 medium.gyration = gyration_argument(gyration);
+                 return medium;
              }),
-             py::arg("n"), py::kw_only(), py::arg("euler_zyz_deg") = std::array<double, 3>{0.0, 0.0, 0.0},
+             py::arg("n"), py::kw_only(), py::arg("euler_zyz_deg") = std::array<double, 3>{0.0, 0.0, 0.0}, py::arg("gyration") = py::none(),
              "n: one index (isotropic) or three along X, Y, Z; complex n + iκ for an absorbing medium.\n"
-             "euler_zyz_deg: the orientation of the indicatrix axes in the lab frame (docs/conventions.md).")
+             "euler_zyz_deg: the orientation of the indicatrix axes in the lab frame (docs/conventions.md).\n"
+             "gyration: natural optical activity, Landau's gyration tensor g (dimensionless) in the indicatrix frame:\n"
+             "three values along X, Y, Z or a symmetric 3 × 3 matrix; g = λρ/π along a principal direction of rotatory\n"
+             "power ρ (positive: dextrorotatory, docs/conventions.md). None: inactive.")
         .def_static(
             "of_mineral",
-            [](const std::string& name, double wavelength_nm, std::array<double, 3> angles_deg) {
+            [](const std::string& name, double wavelength_nm, std::array<double, 3> angles_deg, const std::string& handedness) {
                 if (!(wavelength_nm > 0.0) || !std::isfinite(wavelength_nm)) throw py::value_error("wavelength_nm: expected a finite number > 0");
                 const Mineral& mineral = catalog().find(name);
-                return OpticalMedium::from_n_kappa(mineral.principal_n(wavelength_nm), mineral.principal_kappa(wavelength_nm),
-                                                   axes_argument(angles_deg));
+                const Handedness hand = parse_handedness(handedness);
+                OpticalMedium medium = OpticalMedium::from_n_kappa(mineral.principal_n(wavelength_nm), mineral.principal_kappa(wavelength_nm),
+                                                                   axes_argument(angles_deg));
+                if (mineral.optically_active()) {
+                    medium.gyration = gyration_tensor(mineral.principal_rotatory_power(wavelength_nm), Eigen::Matrix3d::Identity(), wavelength_nm, hand);
+                }
+                return medium;
             },
             py::arg("mineral"), py::arg("wavelength_nm"), py::kw_only(), py::arg("euler_zyz_deg") = std::array<double, 3>{0.0, 0.0, 0.0},
-            "The medium of a catalog mineral at a wavelength, its indicatrix so oriented.")
+            py::arg("handedness") = "right",
+            "The medium of a catalog mineral at a wavelength, its indicatrix so oriented; an optically active mineral\n"
+            "(quartz) in the form `handedness`, 'right' or 'left'.")
         .def_property_readonly("principal_n", [](const OpticalMedium& m) { return Eigen::Vector3cd(m.principal_n); })
-        .def_property_readonly("axes", [](const OpticalMedium& m) { return Eigen::Matrix3d(m.axes); }, "indicatrix X, Y, Z (columns), lab frame");
+        .def_property_readonly("axes", [](const OpticalMedium& m) { return Eigen::Matrix3d(m.axes); }, "indicatrix X, Y, Z (columns), lab frame")
+        .def_property_readonly("gyration", [](const OpticalMedium& m) { return Eigen::Matrix3d(m.gyration); },
+                               "Landau's gyration tensor in the indicatrix frame (zero: inactive)");
 
     py::class_<InterfaceWave>(module, "Wave", "One reflected or transmitted plane wave (docs/interface.md).")
         .def_property_readonly("kind", [](const InterfaceWave& w) { return w.kind == InterfaceWave::Kind::reflected ? "reflected" : "transmitted"; })
         .def_property_readonly("mode", [](const InterfaceWave& w) { return std::string(wave_mode_name(w.mode)); },
-                               "'s+p' (isotropic), 'ordinary'/'extraordinary' (uniaxial), 'fast'/'slow' (biaxial)")
+                               "'s+p' (isotropic), 'ordinary'/'extraordinary' (uniaxial), 'fast'/'slow' (biaxial, or optically active)")
         .def_readonly("direction", &InterfaceWave::direction, "unit wave normal (Re N), lab frame")
         .def_readonly("ray_direction", &InterfaceWave::ray_direction, "unit time-averaged Poynting vector")
         .def_readonly("n", &InterfaceWave::n, "√(N·N), complex")
@@ -114,7 +146,7 @@ void bind_interface(py::module_& module) {
                                "(E_s, E_p) for a unit incident Jones vector (isotropic waves, polarized incidence)")
         .def_readonly("amplitude", &InterfaceWave::amplitude, "an anisotropic mode's complex amplitude (polarized incidence)")
         .def_readonly("e_field", &InterfaceWave::e_field)
-        .def_readonly("d_direction", &InterfaceWave::d_direction, "an anisotropic mode's vibration direction")
+        .def_readonly("d_direction", &InterfaceWave::d_direction, "an anisotropic mode's vibration direction (zero for the elliptical waves of an active medium)")
         .def_readonly("evanescent", &InterfaceWave::evanescent)
         .def("__repr__", [](const InterfaceWave& w) {
             return std::string("<petroscope.Wave ") + (w.kind == InterfaceWave::Kind::reflected ? "reflected " : "transmitted ") +
@@ -134,8 +166,9 @@ transmitted wave, solved exactly (the local interface model, docs/interface.md).
 
 direction: the incident wave normal (lab frame), toward medium 2. normal: the interface normal, from
 medium 1 into medium 2. polarization (isotropic medium 1): 'unpolarized', 's', 'p', a Jones vector
-(E_s, E_p) or a Stokes vector (S0, S1, S2, S3). mode (anisotropic medium 1): the incident eigenmode,
-'fast', 'slow', 'ordinary' or 'extraordinary'. Medium 1 must be lossless. arithmetic: 'long_double'
+(E_s, E_p) or a Stokes vector (S0, S1, S2, S3). mode (anisotropic or optically active medium 1): the
+incident eigenmode, 'fast', 'slow', or for an inactive uniaxial medium 'ordinary' or 'extraordinary'.
+Medium 1 must be lossless. arithmetic: 'long_double'
 (fluxes balance to about 1e-15 even near grazing and optic axes) or 'double' (about twice as fast, within
 about 4e-11 of it in every power and Stokes parameter; the renderer's).)");
 }

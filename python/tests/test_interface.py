@@ -114,3 +114,39 @@ def test_the_verification_cases_pass():
     failed = [t["name"] for t in tests if not t["passed"]]
     assert failed == []
     assert all(check["passed"] for t in tests for check in t["checks"])
+
+
+def test_optically_active_quartz_sends_two_circular_waves_along_its_axis():
+    # Along the optic axis the two waves of quartz are circular with n = n̄ ∓ g₃₃/2, n̄ = √(n_o² + g₃₃²/4), and
+    # both have the admittance n̄: R = ((n̄ − 1)/(n̄ + 1))², each wave (1 − R)/2 (docs/verification.md, T8).
+    air = petroscope.Medium(1.0)
+    for handedness, sense in (("right", 1.0), ("left", -1.0)):
+        quartz = petroscope.Medium.of_mineral("quartz", 589.3, handedness=handedness)
+        g33 = quartz.gyration[2, 2]
+        assert sense * g33 > 0 and quartz.gyration[0, 0] == pytest.approx(-g33 / 2, rel=1e-12)
+        n_bar = math.hypot(quartz.principal_n[0].real, g33 / 2)
+        reflectance = ((n_bar - 1) / (n_bar + 1)) ** 2
+        result = petroscope.interface(air, quartz, direction=(0, 0, 1), polarization="s")
+        fast, slow = [w for w in result.waves if w.kind == "transmitted"]
+        assert (fast.mode, slow.mode) == ("fast", "slow")
+        assert abs(fast.n - (n_bar - abs(g33) / 2)) < 1e-12 and abs(slow.n - (n_bar + abs(g33) / 2)) < 1e-12
+        for wave, circular in ((fast, sense), (slow, -sense)):
+            assert wave.power == pytest.approx((1 - reflectance) / 2, abs=1e-12)
+            assert wave.stokes[3] == pytest.approx(circular * wave.power, abs=1e-12)  # right circular: S3 = +S0
+            np.testing.assert_array_equal(wave.d_direction, np.zeros(3))
+        # The same crystal given by its indices and gyration.
+        same = petroscope.Medium(quartz.principal_n, gyration=np.diag(quartz.gyration))
+        again = petroscope.interface(air, same, direction=(0, 0, 1), polarization="s")
+        assert [w.power for w in again.waves] == [w.power for w in result.waves]
+
+
+def test_bad_optical_activity_input():
+    with pytest.raises(ValueError, match="right or left"):
+        petroscope.Medium.of_mineral("quartz", 589.3, handedness="sideways")
+    with pytest.raises(ValueError, match="gyration"):
+        petroscope.Medium(1.5, gyration=[[0, 1e-5, 0], [0, 0, 0], [0, 0, 0]])
+    with pytest.raises(ValueError, match="gyration"):
+        petroscope.Medium(1.5, gyration=[math.nan, 0, 0])
+    quartz = petroscope.Medium.of_mineral("quartz", 589.3)
+    with pytest.raises(ValueError, match="optically active"):
+        petroscope.interface(quartz, petroscope.Medium(1.0), direction=(0, 0, 1), mode="ordinary")
