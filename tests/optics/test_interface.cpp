@@ -61,13 +61,15 @@ TEST(Interface, CalciteAtNormalIncidenceSplitsIntoOrdinaryAndExtraordinary) {
 
 // The verification suite (src/verification) at the acceptance sizes of issue 3: Fresnel, Snell and
 // coplanarity sweeps, total internal reflection, Brewster, uniaxial laws, R + T = 1 over 10^6 random cases
-// and 10^4 on or within 1e-9 rad of optic axes, and agreement with the 4×4 solver over 10^4 cases.
+// and 10^4 on or within 1e-9 rad of optic axes, agreement with the 4×4 solver over 10^4 cases, and
+// optically active media over 10^5 cases.
 TEST(InterfaceAcceptance, VerificationSuiteAtAcceptanceSizes) {
     InterfaceSuiteSize size;
     size.random_energy_cases = 1000000;
     size.near_axis_cases = 20000;
     size.berreman_cases = 10000;
     size.uniaxial_cases = 5000;
+    size.optically_active_cases = 100000;
     for (const VerificationTest& test : run_interface_suite(size)) {
         for (const VerificationCheck& check : test.checks) {
             EXPECT_TRUE(check.passed) << test.name << ": " << check.quantity << " = " << check.measured << " (tolerance " << check.tolerance << ")";
