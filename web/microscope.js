@@ -34,6 +34,7 @@ function specimenParams() {
     }
     params.set("thickness_um", $("crystal-thickness").value || "30");
   }
+  params.set("handedness", $("handedness").value);
   if (document.querySelector('input[name="light"]:checked').value === "mono") params.set("wavelength_nm", $("wavelength").value);
   return params;
 }
@@ -384,7 +385,9 @@ async function start() {
   fillSelect($("section"), catalog.sections, "granite");
   fillSelect($("mineral"), catalog.minerals.map((m) => m.name), "calcite");
   fillSelect($("cut"), catalog.cuts, "optic-axis");
-  for (const id of ["section", "seed", "section-thickness", "mineral", "cut", "tilt", "azimuth", "euler", "crystal-thickness"]) $(id).addEventListener("change", specimenChanged);
+  for (const id of ["section", "seed", "section-thickness", "mineral", "cut", "tilt", "azimuth", "euler", "crystal-thickness", "handedness"]) {
+    $(id).addEventListener("change", specimenChanged);
+  }
   for (const input of document.querySelectorAll('input[name="specimen"]')) input.addEventListener("change", specimenChanged);
   for (const id of ["polarizer", "analyzer", "plate", "wedge", "condenser", "bertrand", "illuminant"]) $(id).addEventListener("change", refresh);
   $("plate").addEventListener("change", () => { $("wedge-label").hidden = $("plate").value !== "wedge"; });

@@ -188,7 +188,9 @@ Reply LiveMicroscope::answer(std::string_view path, const QueryParameters& query
 Reply LiveMicroscope::catalog_reply() const {
     nlohmann::json minerals = nlohmann::json::array();
     for (const Mineral& mineral : catalog_.minerals()) {
-        minerals.push_back({{"name", mineral.name}, {"optical_class", optical_class_name(mineral.optical_class)}});
+        minerals.push_back({{"name", mineral.name},
+                            {"optical_class", optical_class_name(mineral.optical_class)},
+                            {"optically_active", mineral.optically_active()}});
     }
     return json_reply({{"minerals", minerals},
                        {"sections", section_names_},

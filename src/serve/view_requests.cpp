@@ -90,7 +90,7 @@ Illumination illumination_from(const QueryParameters& query) {
 const std::vector<std::string>& view_parameter_names() {
     static const std::vector<std::string> names{"optics", "wavelength_nm", "illuminant", "polarizer", "analyzer", "plate", "wedge_position", "section",
                                                 "seed", "x", "y", "mineral", "cut", "euler", "azimuth_deg", "tilt_deg", "thickness_um",
-                                                "condenser_na", "na", "size_px"};
+                                                "condenser_na", "na", "size_px", "handedness"};
     return names;
 }
 
@@ -142,6 +142,7 @@ ConoscopeRequest conoscope_view_request(const QueryParameters& query, const Mine
         request.orientation = orientation_from(query);
         request.thickness_um = thickness_override_um(query).value_or(30.0);
     }
+    request.handedness = parse_handedness(query.choice("handedness", {"right", "left"}));
     request.numerical_aperture = query.number("na", 0.05, 0.95, 0.85);
     request.size_px = static_cast<int>(query.integer("size_px", 64, kServerMaxFigurePx, 512));
     set_light_and_polars(request, query);

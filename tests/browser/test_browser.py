@@ -184,6 +184,34 @@ def test_the_bertrand_lens_shows_the_centred_cross_of_calcite_cut_across_its_axi
         turn_stage_by_keys(page, 30)
 
 
+def test_the_form_of_quartz_turns_the_spirals_of_the_mica_plate(page):
+    """A 1 mm quartz plate cut across its axis under the Bertrand lens with the mica (λ/4) plate shows Airy's
+    spirals, whose sense gives the handedness: the page's figure of each form is the library's. A mirror across
+    the plate's NE-SW axis turns right quartz into left and keeps the plate, but swaps polarizer and analyzer,
+    which changes this figure by under 1e-3 (linear): so left is right's mirror image to about a code, and far
+    from right itself."""
+    petroscope = pytest.importorskip("petroscope")
+    page.evaluate("document.querySelector('input[name=specimen][value=crystal]').click()")
+    choose(page, "mineral", "quartz")
+    choose(page, "cut", "optic-axis")
+    choose(page, "crystal-thickness", "1000")
+    choose(page, "plate", "mica")
+    set_checkbox(page, "bertrand", True)
+    shown = {}
+    for hand in ("right", "left"):
+        choose(page, "handedness", hand)
+        shown[hand] = canvas_rgb(page)
+        expected = srgb_codes(petroscope.conoscope(mineral="quartz", cut="optic-axis", thickness_um=1000.0, plate="mica",
+                                                   handedness=hand).image)
+        assert numpy.abs(shown[hand] - expected).max() <= 1, hand
+    screenshot(page, "browser-quartz-left-mica.png")
+    mirrored = shown["right"].transpose(1, 0, 2)
+    assert numpy.abs(shown["left"] - mirrored).max() <= 2
+    assert numpy.abs(shown["left"] - shown["right"]).max() > 60
+    choose(page, "handedness", "right")
+    choose(page, "crystal-thickness", "30")
+
+
 def test_pushing_a_plate_in_needs_no_server_once_the_page_has_fetched_it(page):
     """While idle the page fetches the views one click away; pushing the gypsum plate in and out then
     draws at once from what it holds, and the time from the click to the drawn view is reported."""

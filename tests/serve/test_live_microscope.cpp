@@ -54,6 +54,9 @@ TEST(LiveMicroscope, ServesThePageAndNoOtherFile) {
 TEST(LiveMicroscope, TheCatalogListsMineralsAndTheShippedSections) {
     const nlohmann::json catalog_json = nlohmann::json::parse(get("/api/catalog").body);
     EXPECT_EQ(catalog_json["minerals"].size(), catalog().minerals().size());
+    for (const auto& mineral : catalog_json["minerals"]) {
+        EXPECT_EQ(mineral["optically_active"].get<bool>(), mineral["name"] == "quartz") << mineral["name"];
+    }
     const std::vector<std::string> sections = catalog_json["sections"];
     EXPECT_NE(std::find(sections.begin(), sections.end(), "granite"), sections.end());
     EXPECT_EQ(sections.back(), "random");
@@ -115,6 +118,8 @@ TEST(LiveMicroscope, BadInputIsRefusedNamingTheParameter) {
     EXPECT_NE(error_of(get("/api/view", {{"mineral", "kryptonite\x1b[2J"}})).find("kryptonite\\x1b[2J"), std::string::npos);
     EXPECT_NE(error_of(get("/api/view", {{"size_px", "5000"}, {"optics", "conoscope"}})).find("parameter 'size_px'"), std::string::npos);
     EXPECT_NE(error_of(get("/api/view", {{"euler", "1,2"}})).find("parameter 'euler'"), std::string::npos);
+    EXPECT_NE(error_of(get("/api/view", {{"handedness", "sideways"}, {"optics", "conoscope"}})).find("parameter 'handedness': expected one of right, left"),
+              std::string::npos);
     EXPECT_NE(error_of(get("/api/view", {{"cut", "sideways"}})).find("parameter 'cut'"), std::string::npos);
     EXPECT_NE(error_of(get("/api/grain", {{"section", "granite"}, {"x", "512"}})).find("parameter 'x'"), std::string::npos);
     EXPECT_NE(error_of(get("/api/view", {{"analyzer", "maybe"}})).find("expected one of in, out"), std::string::npos);
