@@ -25,7 +25,7 @@ namespace {
 
 struct GrainFitOptions {
     std::vector<std::string> photos, stages, plates, regions, masks;
-    std::string mineral, orientation, euler, thickness_range = "1um:200um", output_dir;
+    std::string mineral, orientation, euler, thickness_range = "1um:200um", output_dir, handedness = "right";
     double plate_deg = 45.0, condenser_na = 0.0, polarizer_deg = 0.0, analyzer_deg = 90.0;
     bool exposure_free = false, json = false, verbose = false;
     int candidates = 4;
@@ -98,6 +98,7 @@ nlohmann::json report_json(const GrainFitOptions& options, const std::vector<Gra
     return {{"program", "petroscope 0.1.0"},
             {"command", "fit orthoscope"},
             {"mineral", options.mineral},
+            {"handedness", handedness_name(fit.handedness)},
             {"photos", photo_entries},
             {"orientation", grain_orientation_name(fit.orientation)},
             {"condenser_na", fit.microscope.condenser_na},
@@ -152,6 +153,7 @@ GrainFitRequest grain_fit_request(const GrainFitOptions& options) {
     request.analyzer_deg = options.analyzer_deg;
     request.light = light_from_options(options.light);
     if (request.light.monochromatic()) throw InputError("--wavelength: fit orthoscope needs white light (it reads interference colours)");
+    request.handedness = with_option("--handedness", [&] { return parse_handedness(options.handedness); });
     std::tie(request.thickness_min_um, request.thickness_max_um) = length_range_um("--thickness-range", options.thickness_range);
     if (!options.euler.empty()) {
         if (!options.orientation.empty() && options.orientation != "known") throw InputError("--euler-deg gives the orientation: it needs --orientation known (or none)");
@@ -247,6 +249,7 @@ void add_fit_orthoscope_command(CLI::App* fit, const std::string& minerals_dir) 
     command->add_option("--polarizer-deg", options->polarizer_deg, "Polarizer direction in the lab")->capture_default_str();
     command->add_option("--analyzer-deg", options->analyzer_deg, "Analyzer direction in the lab")->capture_default_str();
     command->add_option("--candidates", options->candidates, "Grid minima refined by Ceres")->capture_default_str()->check(CLI::Range(1, 20));
+    command->add_option("--handedness", options->handedness, "right | left: the form of an optically active mineral (quartz)")->capture_default_str();
     add_light_options(command, options->light);
     add_fit_output_options(command, options->output_dir, options->json);
     command->callback([options, &minerals_dir] { run_fit_orthoscope(*options, minerals_dir); });

@@ -125,6 +125,7 @@ void run_random(const RandomOptions& options, const std::string& minerals_dir) {
     if (!options.wedge.empty()) apply_wedge(options.wedge, wedge_holder);
 
     ThinSection section = random_voronoi_section(settings);
+    draw_handedness(section, catalog, settings.seed);
     if (!options.wedge.empty()) {
         section.thickness_kind = ThicknessKind::wedge;
         section.wedge_start_um = wedge_holder.wedge_start_um;

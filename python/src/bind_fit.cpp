@@ -204,9 +204,10 @@ py::dict fit_orthoscope(const py::object& photos, const std::string& mineral, co
                         double plate_slow_deg, const py::object& mask, const py::object& region, const std::string& orientation,
                         const std::optional<std::array<double, 3>>& euler_zyz_deg, std::pair<double, double> thickness_range_um,
                         bool exposure_free, int candidates, double condenser_na, double polarizer_deg, double analyzer_deg,
-                        const py::object& light, const py::object& progress, bool verbose) {
+                        const py::object& light, const std::string& handedness, const py::object& progress, bool verbose) {
     show_solver_messages(verbose);
     GrainFitRequest request = grain_fit_request(photos, mineral, stage_deg, plate, plate_slow_deg, mask, region, orientation, euler_zyz_deg);
+    request.handedness = parse_handedness(handedness);
     std::tie(request.thickness_min_um, request.thickness_max_um) = thickness_range_um;
     request.exposure_free = exposure_free;
     request.candidates = candidates;
@@ -254,7 +255,7 @@ array carries no JPEG encoding: its systematic error is not checked (the command
                py::arg("orientation") = "max-birefringence", py::arg("euler_zyz_deg") = py::none(),
                py::arg("thickness_range_um") = std::pair(1.0, 200.0), py::arg("exposure_free") = false, py::arg("candidates") = 4,
                py::arg("condenser_na") = 0.0, py::arg("polarizer_deg") = 0.0, py::arg("analyzer_deg") = 90.0, py::arg("light") = py::none(),
-               py::arg("progress") = py::none(), py::arg("verbose") = false,
+               py::arg("handedness") = "right", py::arg("progress") = py::none(), py::arg("verbose") = false,
                R"(Fits a grain's thickness (and optic orientation) to its colours in crossed-polar photos (docs/fitting.md).
 
 photos: one photo or a list, each camera values 0 to 1, float, (height, width, 3), sRGB as a camera stores it.
@@ -264,7 +265,9 @@ mineral: name or alias. stage_deg, plate ('gypsum', 'mica' or None), mask (array
 orientation: 'max-birefringence' (the grain shows its highest colour; its angle is fitted), 'known' (give
   euler_zyz_deg) or 'free' (only the retardation is determined). thickness_range_um: (min, max) searched.
 exposure_free: fit the exposure too. candidates: grid minima refined (1 to 20). condenser_na,
-  polarizer_deg, analyzer_deg, light (white: a Light or None) as for orthoscope().
+  polarizer_deg, analyzer_deg, light (white: a Light or None) as for orthoscope(). handedness: 'right' or
+  'left', the form of an optically active mineral (quartz): with a plate in, it changes a grain's colour by
+  about a code level.
 progress: called with the fraction done; return False to cancel. Ctrl-C cancels.
 verbose: the solver's (Ceres's) messages on standard error, as for fit_conoscope().
 

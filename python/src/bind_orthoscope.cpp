@@ -13,12 +13,19 @@
 namespace petroscope::python {
 namespace {
 
-ThinSectionGrain make_grain(int label, std::string mineral, std::array<double, 3> angles_deg, std::optional<double> thickness_um) {
+ThinSectionGrain make_grain(int label, std::string mineral, std::array<double, 3> angles_deg, std::optional<double> thickness_um,
+                            const std::optional<std::string>& handedness) {
     if (label < 0 || label > 65535) throw py::value_error("label: expected 0 to 65535, got " + std::to_string(label));
     for (const double angle : angles_deg) {
         if (!std::isfinite(angle)) throw py::value_error("euler_zyz_deg: expected finite angles in degrees");
     }
-    return {label, std::move(mineral), euler_zyz_deg(angles_deg[0], angles_deg[1], angles_deg[2]), thickness_um, 0};
+    std::optional<Handedness> hand;
+    if (handedness) {
+        hand = parse_handedness(*handedness);
+        const Mineral& record = catalog().find(mineral);
+        if (!record.optically_active()) throw py::value_error("handedness: " + record.name + " is not optically active: it has no handedness");
+    }
+    return {label, std::move(mineral), euler_zyz_deg(angles_deg[0], angles_deg[1], angles_deg[2]), thickness_um, 0, hand};
 }
 
 // The label map: a 2-D array of integers 0 … 65535 (any integer dtype); TypeError or ValueError otherwise.
@@ -86,11 +93,16 @@ void bind_orthoscope(py::module_& module) {
     py::class_<ThinSectionGrain>(module, "Grain", "One grain of a thin section: its label in the map, its mineral and orientation.")
         .def(py::init(&make_grain), py::arg("label"), py::arg("mineral"), py::kw_only(),
              py::arg("euler_zyz_deg") = std::array<double, 3>{0.0, 0.0, 0.0}, py::arg("thickness_um") = py::none(),
+             py::arg("handedness") = py::none(),
              "label: its value in the label map (0 to 65535). mineral: name or alias. euler_zyz_deg: orientation of the\n"
-             "indicatrix (docs/conventions.md). thickness_um: its own thickness instead of the section's.")
+             "indicatrix (docs/conventions.md). thickness_um: its own thickness instead of the section's. handedness:\n"
+             "'right' or 'left', the form of an optically active mineral (quartz); None: right.")
         .def_readonly("label", &ThinSectionGrain::label)
         .def_readonly("mineral", &ThinSectionGrain::mineral)
         .def_readonly("thickness_um", &ThinSectionGrain::thickness_um)
+        .def_property_readonly("handedness", [](const ThinSectionGrain& g) {
+            return g.handedness ? std::optional<std::string>(handedness_name(*g.handedness)) : std::nullopt;
+        })
         .def_property_readonly("euler_zyz_deg", [](const ThinSectionGrain& g) { return euler_zyz_deg_of(g.crystal_axes); });
 
     py::class_<ThinSection>(module, "Section", "A thin section: a map of grain labels and the grains' minerals and orientations.")

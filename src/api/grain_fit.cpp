@@ -27,6 +27,7 @@ OrthoscopeFitOptions fit_options(const GrainFitRequest& request, const MineralCa
     options.white_balance = request.light.white_balance;
     options.exposure_free = request.exposure_free;
     options.candidates = request.candidates;
+    options.handedness = request.handedness;
     return options;
 }
 

@@ -64,7 +64,7 @@ ThinSection cement_only_section(double thickness_um) {
     section.name = "outside the section";
     section.width_px = section.height_px = 1;
     section.labels = {1};
-    section.grains = {ThinSectionGrain{1, "canada balsam", Eigen::Matrix3d::Identity(), std::nullopt, 0}};
+    section.grains = {ThinSectionGrain{1, "canada balsam", Eigen::Matrix3d::Identity(), std::nullopt, 0, std::nullopt}};
     section.thickness_um = thickness_um;
     return section;
 }

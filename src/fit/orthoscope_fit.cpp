@@ -73,7 +73,9 @@ public:
     /// Per photo, the responses of a grain with these axes.
     std::vector<GrainResponse> responses(const Eigen::Matrix3d& axes) const {
         std::vector<GrainResponse> result;
-        for (const auto& optics : optics_) result.emplace_back(*optics, DispersiveMedium::of(mineral_, axes));
+        DispersiveMedium grain = DispersiveMedium::of(mineral_, axes);
+        grain.gyration = mineral_gyration(mineral_, options_.handedness);
+        for (const auto& optics : optics_) result.emplace_back(*optics, grain);
         return result;
     }
 
@@ -191,14 +193,18 @@ std::vector<GridPoint> global_search(const GrainModel& model, const OrthoscopeFi
     return grid;
 }
 
-/// The best `count` grid points, each more than 4 thickness steps from those chosen before it.
-std::vector<GridPoint> starting_points(std::vector<GridPoint> grid, int count, double thickness_step_um) {
+/// The best `count` grid points, each more than 4 thickness steps from those chosen before it or, for a grain of
+/// maximum birefringence, more than 20° away on the stage (modulo 180°): the two orientations 90° apart, slow and
+/// fast directions swapped, give colours alike without a plate, and only the plate tells them apart.
+std::vector<GridPoint> starting_points(std::vector<GridPoint> grid, int count, double thickness_step_um, GrainOrientation orientation) {
     std::sort(grid.begin(), grid.end(), [](const GridPoint& a, const GridPoint& b) { return a.cost < b.cost; });
     std::vector<GridPoint> chosen;
     for (const GridPoint& point : grid) {
         if (static_cast<int>(chosen.size()) >= count) break;
         const bool near_chosen = std::any_of(chosen.begin(), chosen.end(), [&](const GridPoint& other) {
-            return std::abs(other.thickness_um - point.thickness_um) < 4.0 * thickness_step_um;
+            const bool same_angle = orientation != GrainOrientation::max_birefringence ||
+                                    std::abs(std::remainder(other.angles_deg[0] - point.angles_deg[0], 180.0)) < 20.0;
+            return same_angle && std::abs(other.thickness_um - point.thickness_um) < 4.0 * thickness_step_um;
         });
         if (!near_chosen) chosen.push_back(point);
     }
@@ -422,7 +428,7 @@ OrthoscopeFitResult fit_orthoscope_grain(const std::vector<GrainPhoto>& photos, 
     const GrainModel model(photos, mineral, options, integrator);
     ProgressRelay relay(progress);
     const std::vector<GridPoint> starts =
-        starting_points(global_search(model, options, relay), std::max(options.candidates, 1), thickness_step_um(model, options));
+        starting_points(global_search(model, options, relay), std::max(options.candidates, 1), thickness_step_um(model, options), options.orientation);
 
     OrthoscopeFitResult result;
     std::array<double, kSlots> best{};

@@ -120,7 +120,7 @@ double angle_deg(const Description& description, const Entry& entry, const std::
     return *value;
 }
 
-// "MINERAL, euler A B C | cut NAME [azimuth DEG] [tilt DEG] [, thickness LENGTH]".
+// "MINERAL, euler A B C | cut NAME [azimuth DEG] [tilt DEG] [, thickness LENGTH] [, handedness right|left]".
 ThinSectionGrain parse_grain(const Description& description, int label, const Entry& entry, const MineralCatalog& catalog) {
     const std::string context = "grain " + std::to_string(label);
     const auto fields = split(entry.value, ',');
@@ -135,7 +135,8 @@ ThinSectionGrain parse_grain(const Description& description, int label, const En
         throw description.error(entry, context + ": " + e.what());
     }
     grain.mineral = mineral->name;
-    const std::string expected = "expected 'euler A B C', 'cut NAME [azimuth DEG] [tilt DEG]' or 'thickness LENGTH' after the mineral";
+    const std::string expected =
+        "expected 'euler A B C', 'cut NAME [azimuth DEG] [tilt DEG]', 'thickness LENGTH' or 'handedness right|left' after the mineral";
     bool oriented = false;
     for (std::size_t f = 1; f < fields.size(); ++f) {
         const auto words = split_whitespace(fields[f]);
@@ -179,6 +180,17 @@ ThinSectionGrain parse_grain(const Description& description, int label, const En
             }
             if (!(thickness_um > 0.0)) throw description.error(entry, context + ": the grain's thickness must be > 0, found " + quote_input(words[1]));
             grain.thickness_um = thickness_um;
+        } else if (keyword == "handedness") {
+            if (grain.handedness) throw description.error(entry, context + ": 'handedness' given twice");
+            if (!mineral->optically_active()) {
+                throw description.error(entry, context + ": " + mineral->name + " is not optically active: it has no handedness");
+            }
+            try {
+                if (words.size() != 2) throw InputError("expected 'handedness right' or 'handedness left'");
+                grain.handedness = parse_handedness(words[1]);
+            } catch (const InputError& e) {
+                throw description.error(entry, context + ": " + e.what());
+            }
         } else {
             throw description.error(entry, context + ": " + expected + ", found " + quote_input(fields[f]));
         }
@@ -362,13 +374,14 @@ std::string thin_section_description(const ThinSection& section) {
             break;
         case ThicknessKind::map: text << "thickness_map: " << kThinSectionThicknessMapName << '\n'; break;
     }
-    text << "\n# grain LABEL: MINERAL, euler A B C (ZYZ, degrees: R = Rz(A) Ry(B) Rz(C))[, thickness LENGTH]\n";
+    text << "\n# grain LABEL: MINERAL, euler A B C (ZYZ, degrees: R = Rz(A) Ry(B) Rz(C))[, thickness LENGTH][, handedness right|left]\n";
     for (const ThinSectionGrain& grain : section.grains) {
         check_writable_text("the mineral name", grain.mineral, false);
         const Eigen::Vector3d euler = euler_zyz_deg_of(grain.crystal_axes);
         text << "grain " << grain.label << ": " << grain.mineral << ", euler " << number(euler[0]) << ' ' << number(euler[1]) << ' '
              << number(euler[2]);
         if (grain.thickness_um) text << ", thickness " << number(*grain.thickness_um) << "um";
+        if (grain.handedness) text << ", handedness " << handedness_name(*grain.handedness);
         text << '\n';
     }
     return text.str();

@@ -135,7 +135,12 @@ Image render_orthoscope(const ThinSection& section, const MineralCatalog& catalo
         thickest[g] = std::max(thickest[g], thickness);
     }
     std::vector<DispersiveMedium> media;
-    for (const ThinSectionGrain& grain : section.grains) media.push_back(DispersiveMedium::of(catalog.find(grain.mineral), grain.crystal_axes));
+    for (const ThinSectionGrain& grain : section.grains) {
+        const Mineral& mineral = catalog.find(grain.mineral);
+        DispersiveMedium medium = DispersiveMedium::of(mineral, grain.crystal_axes);
+        medium.gyration = mineral_gyration(mineral, grain.handedness.value_or(Handedness::right));
+        media.push_back(std::move(medium));
+    }
     media.push_back(settings.mounting.cement);
 
     const double middle_wavelength_nm = wavelengths[wavelengths.size() / 2];

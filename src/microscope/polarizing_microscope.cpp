@@ -218,6 +218,41 @@ std::vector<OpticalLayer> MicroscopeOptics::section_layers(std::size_t wavelengt
             {epsilon.cover, mounting_.cover_um}};
 }
 
+namespace {
+
+// An optically active crystal's two forward waves in the single pass (docs/theory.md §9, "The single-pass slab:
+// coupled modes"): the inactive crystal's waves, coupled inside by the gyration g (lab frame) as da/dz = i·k₀·Q·a,
+// Q = [[q₀, i·c₀], [−i·c₁, q₁]] (optics/slab.hpp, gyration_coupling). Q = V·diag(λ)·V⁻¹, so the two waves of
+// the active crystal are V's columns in the inactive basis, with q = λ: returned as (λ, V, V⁻¹).
+struct CoupledWaves {
+    Eigen::Vector2cd q;
+    Eigen::Matrix2cd basis, inverse;
+};
+
+CoupledWaves coupled_waves(const MediumWaves& waves, const Eigen::Vector2d& xi, const Eigen::Matrix3d& gyration) {
+    std::array<SlabMode, 2> forward;
+    for (std::size_t m = 0; m < 2; ++m) {
+        forward[m].q = waves[m].q.real();
+        forward[m].e_field = waves[m].e_field.real();
+        forward[m].h_field = waves[m].h_field.real();
+    }
+    const Eigen::Vector2d c = gyration_coupling(forward, xi, gyration);
+    const std::complex<double> i(0.0, 1.0), q0 = waves[0].q, q1 = waves[1].q;
+    const std::complex<double> root = std::sqrt(0.25 * (q0 - q1) * (q0 - q1) + c[0] * c[1]);
+    CoupledWaves coupled;
+    coupled.q = {0.5 * (q0 + q1) + root, 0.5 * (q0 + q1) - root};
+    for (int m = 0; m < 2; ++m) {
+        // (Q − λI)v = 0: v ∥ (i·c₀, λ − q₀) ∥ (λ − q₁, −i·c₁); the longer of the two is the better conditioned.
+        const Eigen::Vector2cd first(i * c[0], coupled.q[m] - q0), second(coupled.q[m] - q1, -i * c[1]);
+        coupled.basis.col(m) = first.squaredNorm() >= second.squaredNorm() ? first : second;
+        coupled.basis.col(m).normalize();
+    }
+    coupled.inverse = coupled.basis.inverse();
+    return coupled;
+}
+
+}  // namespace
+
 GrainResponse::GrainResponse(const MicroscopeOptics& optics, const DispersiveMedium& crystal)
     : optics_(optics), crystal_(crystal) {
     const MicroscopeSettings& settings = optics.settings();
@@ -227,18 +262,23 @@ GrainResponse::GrainResponse(const MicroscopeOptics& optics, const DispersiveMed
     single_pass_.resize(settings.wavelengths_nm.size());
     for (std::size_t w = 0; w < settings.wavelengths_nm.size(); ++w) {
         const Eigen::Matrix3cd epsilon = crystal_.permittivity(settings.wavelengths_nm[w]);
-        const Eigen::Matrix3d chirality = crystal_.chirality(settings.wavelengths_nm[w]);
-        const bool active = !chirality.isZero(0.0);
+        const Eigen::Matrix3d gyration = crystal_.gyration ? turned_gyration(crystal_.gyration(settings.wavelengths_nm[w]), crystal_.axes)
+                                                           : Eigen::Matrix3d::Zero();
         for (std::size_t k = 0; k < directions.size(); ++k) {
             const MicroscopeOptics::Path& path = optics.path(w, k);
-            // An active crystal's modes are elliptical, split even at normal incidence: the general solver serves it.
-            const MediumWaves waves = directions[k].xi.isZero() && !active ? normal_incidence_waves(epsilon)
-                                                                            : berreman_modes(epsilon, chirality, directions[k].xi);
+            const MediumWaves waves = directions[k].xi.isZero() ? normal_incidence_waves(epsilon) : berreman_modes(epsilon, directions[k].xi);
             if (waves[0].evanescent || waves[1].evanescent) continue;
-            const Eigen::Vector2cd entry = forward_transmission(path.cement, waves) * path.into_crystal;
-            const Eigen::Matrix2cd exit = path.to_eye * forward_transmission(waves, path.cement);
+            Eigen::Vector2cd entry = forward_transmission(path.cement, waves) * path.into_crystal;
+            Eigen::Matrix2cd exit = path.to_eye * forward_transmission(waves, path.cement);
+            Eigen::Vector2cd q(waves[0].q, waves[1].q);
+            if (!gyration.isZero(0.0)) {  // the active crystal's waves, in the inactive basis (coupled_waves)
+                const CoupledWaves coupled = coupled_waves(waves, directions[k].xi, gyration);
+                entry = coupled.inverse * entry;
+                exit = exit * coupled.basis;
+                q = coupled.q;
+            }
             const std::array<Eigen::Vector2cd, 2> amplitude{exit.col(0) * entry[0], exit.col(1) * entry[1]};
-            const std::array<std::complex<double>, 2> phase{path.k0_per_um * waves[0].q, path.k0_per_um * waves[1].q};
+            const std::array<std::complex<double>, 2> phase{path.k0_per_um * q[0], path.k0_per_um * q[1]};
             const double weight = directions[k].weight;
             Spectrum& spectrum = single_pass_[w];
             const auto add = [&spectrum](std::complex<double> coefficient, std::complex<double> rate_per_um) {

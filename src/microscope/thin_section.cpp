@@ -2,6 +2,7 @@
 
 #include "petroscope/core/error.hpp"
 #include "petroscope/core/text.hpp"
+#include "petroscope/minerals/mineral_catalog.hpp"
 #include "petroscope/optics/orientation.hpp"
 
 #include <Eigen/Geometry>
@@ -364,6 +365,14 @@ ThinSection random_voronoi_section(const std::vector<std::string>& minerals, con
     settings.thickness_um = thickness_um;
     settings.seed = seed;
     return random_voronoi_section(settings);
+}
+
+void draw_handedness(ThinSection& section, const MineralCatalog& catalog, std::uint64_t seed) {
+    std::mt19937_64 rng(seed);
+    for (ThinSectionGrain& grain : section.grains) {
+        if (!catalog.find(grain.mineral).optically_active()) continue;
+        grain.handedness = uniform_unit_interval(rng) < 0.5 ? Handedness::right : Handedness::left;
+    }
 }
 
 }  // namespace petroscope

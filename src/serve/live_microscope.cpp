@@ -28,7 +28,7 @@ constexpr std::string_view kUploadPrefix = "upload-";
 constexpr double kWhiteLightNumbersNm = 555.0;
 
 /// A random granite-like section, the same for the same seed (thin_sections/granite was made so).
-ThinSection random_section(std::uint64_t seed) {
+ThinSection random_section(std::uint64_t seed, const MineralCatalog& catalog) {
     VoronoiSectionSettings settings;
     settings.minerals = {"quartz", "orthoclase", "albite", "biotite", "muscovite"};
     settings.weights = {28, 26, 24, 14, 8};
@@ -39,6 +39,7 @@ ThinSection random_section(std::uint64_t seed) {
     settings.seed = seed;
     settings.name = "random " + std::to_string(seed);
     ThinSection section = random_voronoi_section(settings);
+    draw_handedness(section, catalog, seed);
     section.validate();
     return section;
 }
@@ -213,7 +214,7 @@ std::shared_ptr<const ThinSection> LiveMicroscope::section(const QueryParameters
     const std::lock_guard<std::mutex> lock(sections_mutex_);
     if (const auto found = sections_.find(key); found != sections_.end()) return found->second;
     if (sections_.size() >= section_names_.size() + kRandomSectionsKept) sections_.clear();
-    std::shared_ptr<const ThinSection> loaded = random ? std::make_shared<const ThinSection>(random_section(seed))
+    std::shared_ptr<const ThinSection> loaded = random ? std::make_shared<const ThinSection>(random_section(seed, catalog_))
                                                        : std::make_shared<const ThinSection>(read_thin_section(sections_dir_ / name, catalog_));
     sections_[key] = loaded;
     return loaded;

@@ -111,7 +111,7 @@ ThinSection single_crystal_section(const QueryParameters& query, const MineralCa
     section.name = "single crystal of " + mineral.name;
     section.width_px = section.height_px = kCrystalFieldPx;
     section.labels.assign(static_cast<std::size_t>(kCrystalFieldPx) * kCrystalFieldPx, 1);
-    section.grains = {ThinSectionGrain{1, mineral.name, indicatrix_axes(mineral, orientation_from(query)), std::nullopt, 0}};
+    section.grains = {ThinSectionGrain{1, mineral.name, indicatrix_axes(mineral, orientation_from(query)), std::nullopt, 0, std::nullopt}};
     section.thickness_um = thickness_override_um(query).value_or(30.0);
     section.validate();
     return section;

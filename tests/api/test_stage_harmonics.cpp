@@ -6,6 +6,7 @@
 #include "petroscope/api/grain_optics.hpp"
 #include "petroscope/api/stage_harmonics.hpp"
 #include "petroscope/core/angles.hpp"
+#include "petroscope/optics/eigenmodes.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -137,16 +138,32 @@ TEST(GrainOptics, ACrystalCutAcrossItsOpticAxisHasNoExtinctionPosition) {
     EXPECT_FALSE(optics.extinction_stage_deg.has_value());
 }
 
+// sin²2χ of the two waves of a grain along the microscope axis: the ellipticity its optical activity gives them.
+// To first order in the gyration g, Landau's D = εE + i(g·N) × E adds iγ[[0, 1], [−1, 0]] to the transverse
+// impermeability diag(a, b), a, b = 1/n², with γ = (k̂·g·k̂)/n³, so the waves are ellipses of tan 2χ = 2γ/(a − b)
+// (Landau & Lifshitz vol. 8 §101; docs/theory.md §9). Zero for an inactive mineral.
+double activity_ellipticity(const Mineral& mineral, const Eigen::Matrix3d& axes, double wavelength_nm) {
+    const Eigen::Vector3d k_hat = axes.transpose() * Eigen::Vector3d::UnitZ();  // in the indicatrix frame
+    const Eigen::Vector3d g = wavelength_nm * 1e-3 / std::numbers::pi * mineral.principal_rotatory_power(wavelength_nm);
+    const Eigen::Vector2d inverse_squared = inverse_squared_indices(BinormalFrame(Indicatrix{mineral.principal_n(wavelength_nm), axes}), Eigen::Vector3d::UnitZ());
+    const double n = 1.0 / std::sqrt(inverse_squared.mean());
+    const double gamma = k_hat.dot(g.asDiagonal() * k_hat) / (n * n * n);
+    const double tan_2chi = 2.0 * gamma / (inverse_squared[0] - inverse_squared[1]);
+    return tan_2chi * tan_2chi / (1.0 + tan_2chi * tan_2chi);
+}
+
 // Every grain of a section between crossed polars in one wavelength: dark at the extinction stage that
 // grain_optics gives, and 45° from it T·sin²(πΓ/λ) with its retardation Γ, where T, the transmission of the
-// section's faces (glass, balsam, crystal: Fresnel losses of a few per cent), lies between 0.8 and 1.
+// section's faces (glass, balsam, crystal: Fresnel losses of a few per cent), lies between 0.8 and 1. A
+// quartz grain is optically active: its waves are slightly elliptical, and at extinction it keeps
+// T·sin²2χ·sin²(πΓ/λ) (measured 1.5e-5 for a grain cut along its axis).
 TEST(GrainOptics, EveryGrainIsDarkAtItsExtinctionStage) {
     constexpr double kWavelengthNm = 555.0;
     OrthoscopeRequest request = section_request(std::nullopt, true);
     request.light.wavelength_nm = kWavelengthNm;
     const StageHarmonics harmonics = orthoscope_stage_harmonics(request, minerals());
     const ThinSection& section = request.section;
-    int grains_checked = 0;
+    int grains_checked = 0, active_grains_checked = 0;
     for (const ThinSectionGrain& grain : section.grains) {
         const GrainOptics optics = grain_optics(minerals().find(grain.mineral), grain.crystal_axes, section.thickness_um, kWavelengthNm);
         const double interference = std::pow(std::sin(std::numbers::pi * optics.retardation_nm / kWavelengthNm), 2);
@@ -162,12 +179,18 @@ TEST(GrainOptics, EveryGrainIsDarkAtItsExtinctionStage) {
             return largest;
         };
         const double dark = brightest(*optics.extinction_stage_deg), bright = brightest(*optics.extinction_stage_deg + 45.0);
-        EXPECT_LT(dark, 1e-6) << grain.mineral << " grain " << grain.label;
+        const double leak = activity_ellipticity(minerals().find(grain.mineral), grain.crystal_axes, kWavelengthNm) * interference;
+        EXPECT_LT(dark, 1e-6 + leak) << grain.mineral << " grain " << grain.label;
+        if (leak > 1e-6) {
+            EXPECT_GT(dark, 0.8 * leak) << grain.mineral << " grain " << grain.label;
+            ++active_grains_checked;
+        }
         EXPECT_GT(bright / interference, 0.8) << grain.mineral << " grain " << grain.label;
         EXPECT_LT(bright / interference, 1.0) << grain.mineral << " grain " << grain.label;
         ++grains_checked;
     }
     EXPECT_GE(grains_checked, 5);
+    EXPECT_GE(active_grains_checked, 1);
 }
 
 }  // namespace

@@ -133,10 +133,14 @@ protected:
                                                        "--seed 4 -o " + testing::quoted(scratch() / "grain"));
         ASSERT_EQ(made.exit_code, 0) << made.err;
         const std::string description = testing::read_text(scratch() / "grain" / "section.txt");
+        // "grain 1: quartz, euler A B C, handedness H": the grain's orientation and form, as the fit is told them.
         const auto euler = description.find("euler ", description.find("\ngrain 1:"));
         ASSERT_NE(euler, std::string::npos);
-        euler_ = description.substr(euler + 6, description.find('\n', euler) - euler - 6);
+        euler_ = description.substr(euler + 6, description.find(',', euler) - euler - 6);
         std::replace(euler_.begin(), euler_.end(), ' ', ',');
+        const auto hand = description.find("handedness ", euler);
+        ASSERT_NE(hand, std::string::npos);
+        handedness_ = description.substr(hand + 11, description.find('\n', hand) - hand - 11);
         for (const auto& [name, options] : std::vector<std::pair<std::string, std::string>>{
                  {"xpl0.png", "--stage-deg 0"}, {"xpl30.png", "--stage-deg 30"}, {"gypsum0.png", "--stage-deg 0 --plate gypsum"}}) {
             const testing::CommandResult run = petroscope("orthoscope --section " + testing::quoted(scratch() / "grain") + " " + options + " -o " +
@@ -148,11 +152,11 @@ protected:
         return "--photo " + testing::quoted(scratch() / "xpl0.png") + " --photo " + testing::quoted(scratch() / "xpl30.png") + " --photo " +
                testing::quoted(scratch() / "gypsum0.png") + " --stage-deg 0,30,0 --plate none,none,gypsum";
     }
-    std::string euler_;
+    std::string euler_, handedness_;
 };
 
 TEST_F(FitOrthoscopeCli, KnownOrientationGivesTheThicknessWithReportAndSwatches) {
-    const testing::CommandResult run = petroscope("fit orthoscope " + photos() + " --mineral quartz --region 16,16,32,32 --euler-deg=" + euler_ + " -o " + testing::quoted(out()));
+    const testing::CommandResult run = petroscope("fit orthoscope " + photos() + " --mineral quartz --region 16,16,32,32 --euler-deg=" + euler_ + " --handedness " + handedness_ + " -o " + testing::quoted(out()));
     ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
     const nlohmann::json report = nlohmann::json::parse(testing::read_text(out() / "report.json"));
     EXPECT_TRUE(report["acceptable"].get<bool>());
@@ -168,11 +172,12 @@ TEST_F(FitOrthoscopeCli, MaskSelectsTheGrain) {
     const testing::CommandResult run = petroscope(
         "fit orthoscope --photo " + testing::quoted(scratch() / "xpl0.png") + " --photo " + testing::quoted(scratch() / "gypsum0.png") +
         " --plate none,gypsum --mask " + testing::quoted(scratch() / "grain" / "grains.png") + " --mineral quartz --euler-deg=" + euler_ +
-        " --json -o " + testing::quoted(out()));
+        " --handedness " + handedness_ + " --json -o " + testing::quoted(out()));
     ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
     const nlohmann::json report = nlohmann::json::parse(run.out);
     EXPECT_EQ(report["photos"][0]["pixels"].get<int>(), 64 * 64);
     EXPECT_NEAR(report["thickness_um"]["value"].get<double>(), 30.0, 0.5);
+    EXPECT_EQ(report["handedness"], handedness_);
 }
 
 TEST_F(FitOrthoscopeCli, FreeOrientationReportsTheRetardationNotTheThickness) {
@@ -196,6 +201,7 @@ TEST_F(FitOrthoscopeCli, BadPhotosAndOptionsAreRefused) {
     expect_rejected("fit orthoscope " + photos() + " --orientation sideways" + tail, {"--orientation", "max-birefringence"});
     expect_rejected("fit orthoscope " + photos() + " --orientation known" + tail, {"--euler-deg"});
     expect_rejected("fit orthoscope " + photos() + " --euler-deg 1,2" + tail, {"--euler-deg", "ALPHA,BETA,GAMMA"});
+    expect_rejected("fit orthoscope " + photos() + " --handedness sideways" + tail, {"--handedness", "'sideways'", "expected right or left"});
     expect_rejected("fit orthoscope " + photos() + " --thickness-range 50um:10um" + tail, {"--thickness-range", "maximum"});
     expect_rejected("fit orthoscope " + photos() + " --mineral quartz -o " + testing::quoted(scratch() / "xpl0.png"), {"-o", "not a folder"});
     const testing::CommandResult grey = petroscope("orthoscope --section " + testing::quoted(scratch() / "grain") + " --wavelength 589nm -o " +

@@ -138,6 +138,7 @@ TEST_F(ThinSectionFile, RoundTripsEveryThicknessKind) {
     settings.pixel_size_um = 3.25;
     settings.name = "round trip";
     ThinSection original = random_voronoi_section(settings);
+    draw_handedness(original, catalog(), 3);
     original.note = "made for a test: 'quotes', colons: and C#, no comment";
     original.grains[3].thickness_um = 17.125;
     original.grains.push_back({500, "calcite", euler_zyz_deg(1, 2, 3), std::nullopt, 0});  // not in the map: kept
@@ -173,6 +174,7 @@ TEST_F(ThinSectionFile, RoundTripsEveryThicknessKind) {
         for (std::size_t i = 0; i < copy.grains.size(); ++i) {
             EXPECT_EQ(copy.grains[i].label, original.grains[i].label);
             EXPECT_EQ(copy.grains[i].mineral, original.grains[i].mineral);
+            EXPECT_EQ(copy.grains[i].handedness, original.grains[i].handedness);
             EXPECT_EQ(copy.grains[i].thickness_um, original.grains[i].thickness_um);
             EXPECT_LT((copy.grains[i].crystal_axes - original.grains[i].crystal_axes).cwiseAbs().maxCoeff(), 1e-13);
         }
@@ -270,10 +272,55 @@ TEST_F(ThinSectionFile, OrientationsMustSuitTheMineral) {
     EXPECT_CONTAINS(error_with_line(6, "grain 1: quartz"), shown() + ":6: grain 1: quartz is uniaxial; expected an orientation");
     EXPECT_CONTAINS(error_with_line(6, "grain 1: quartz, cut acute-bisectrix"), shown() + ":6: grain 1 (quartz): cut 'acute-bisectrix' exists only for biaxial minerals");
     EXPECT_CONTAINS(error_with_line(6, "grain 1: quartz, cut sideways"), shown() + ":6: grain 1 (quartz): unknown cut 'sideways'");
-    EXPECT_CONTAINS(error_with_line(6, "grain 1: quartz, spin 10"), shown() + ":6: grain 1: expected 'euler A B C', 'cut NAME [azimuth DEG] [tilt DEG]' or 'thickness LENGTH'");
+    EXPECT_CONTAINS(error_with_line(6, "grain 1: quartz, spin 10"),
+                    shown() + ":6: grain 1: expected 'euler A B C', 'cut NAME [azimuth DEG] [tilt DEG]', 'thickness LENGTH' or 'handedness right|left'");
     EXPECT_CONTAINS(error_with_line(6, "grain 1: , euler 0 0 0"), shown() + ":6: grain 1: expected a mineral name first");
     // Any orientation will do for an isotropic mineral.
     EXPECT_EQ(error_with_line(8, "grain 7: garnet, cut optic-axis tilt 20"), "");
+}
+
+// Quartz is optically active: a grain may name its form; other minerals have none.
+TEST_F(ThinSectionFile, OnlyAnOpticallyActiveGrainHasAHandedness) {
+    std::vector<std::string> lines = small_lines();
+    lines[5] = "grain 1: quartz, euler 10 20 30, handedness left";
+    const ThinSection section = read_thin_section(write_small(lines), catalog());
+    EXPECT_EQ(section.grains[0].handedness, Handedness::left);
+    EXPECT_EQ(section.grains[1].handedness, std::nullopt);  // muscovite
+    const std::string written = thin_section_description(section);
+    const std::size_t line = written.find("grain 1: quartz, euler ");
+    ASSERT_NE(line, std::string::npos);
+    EXPECT_EQ(written.substr(written.find(',', line + 23), written.find('\n', line) - written.find(',', line + 23)), ", handedness left");
+    EXPECT_EQ(read_thin_section(write_small(small_lines()), catalog()).grains[0].handedness, std::nullopt);  // unnamed: right when rendered
+    EXPECT_CONTAINS(error_with_line(7, "grain 2: muscovite, euler 0 0 0, handedness right"), shown() + ":7: grain 2: muscovite is not optically active: it has no handedness");
+    EXPECT_CONTAINS(error_with_line(6, "grain 1: quartz, euler 0 0 0, handedness sideways"), shown() + ":6: grain 1: unknown handedness 'sideways' (expected right or left)");
+    EXPECT_CONTAINS(error_with_line(6, "grain 1: quartz, euler 0 0 0, handedness"), shown() + ":6: grain 1: expected 'handedness right' or 'handedness left'");
+    EXPECT_CONTAINS(error_with_line(6, "grain 1: quartz, euler 0 0 0, handedness left, handedness right"), shown() + ":6: grain 1: 'handedness' given twice");
+}
+
+// A random section draws each quartz grain's form, half right and half left, without changing its grains.
+TEST_F(ThinSectionFile, RandomSectionsDrawTheFormOfEveryOpticallyActiveGrain) {
+    VoronoiSectionSettings settings;
+    settings.minerals = {"quartz", "muscovite"};
+    settings.grain_count = 400;
+    settings.size_px = 128;
+    ThinSection section = random_voronoi_section(settings);
+    const ThinSection before = section;
+    draw_handedness(section, catalog(), settings.seed);
+    int right = 0, left = 0;
+    for (std::size_t g = 0; g < section.grains.size(); ++g) {
+        const ThinSectionGrain& grain = section.grains[g];
+        EXPECT_EQ(grain.crystal_axes, before.grains[g].crystal_axes);
+        if (grain.mineral != "quartz") {
+            EXPECT_EQ(grain.handedness, std::nullopt);
+            continue;
+        }
+        ASSERT_TRUE(grain.handedness.has_value());
+        (*grain.handedness == Handedness::right ? right : left) += 1;
+    }
+    EXPECT_EQ(section.labels, before.labels);
+    // Binomial with p = ½ over ~200 grains: within 4σ of half.
+    const double n = right + left;
+    EXPECT_LT(std::abs(right - n / 2), 4.0 * std::sqrt(n) / 2) << right << " right, " << left << " left";
 }
 
 TEST_F(ThinSectionFile, OtherSyntaxErrors) {

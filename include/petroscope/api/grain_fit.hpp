@@ -35,6 +35,7 @@ struct GrainFitRequest {
     double condenser_na = 0.0;
     double polarizer_deg = 0.0, analyzer_deg = 90.0;
     Light light;  // white: the photos' interference colours
+    Handedness handedness = Handedness::right;  // the form of an optically active mineral (quartz)
 };
 
 /// A request checked and resolved against the catalog; the catalog must outlive it.

@@ -69,6 +69,7 @@ struct OrthoscopeFitOptions {
     bool white_balance = true;  // as the renderer's default: the light's white shown as display white
     bool exposure_free = false;
     int candidates = 4;  // grid minima refined by Ceres
+    Handedness handedness = Handedness::right;  // the form of an optically active mineral (quartz); others ignore it
 };
 
 /// One refined minimum of the global search.

@@ -1,6 +1,8 @@
 #pragma once
 // A thin section: a map of grain labels, the mineral and orientation of each grain, and the thickness.
 // The file format is thin_sections/README.md (io/thin_section_file.hpp); frames: docs/conventions.md.
+#include "petroscope/optics/gyration.hpp"
+
 #include <Eigen/Core>
 
 #include <cstdint>
@@ -11,12 +13,17 @@
 
 namespace petroscope {
 
+class MineralCatalog;
+
 struct ThinSectionGrain {
     int label = 0;                          // value in the grain map, 0 … 65535
     std::string mineral;                    // canonical name in the mineral catalog
     Eigen::Matrix3d crystal_axes = Eigen::Matrix3d::Identity();  // indicatrix X, Y, Z (columns, lab frame) at stage 0
     std::optional<double> thickness_um;     // the grain's own thickness, overriding the section's
     int line = 0;                           // line of the description that defined it (0: not from a file)
+    /// The form of an optically active mineral (quartz); none: right-handed, as on the command line. Only
+    /// optically active minerals have one (thin_sections/README.md).
+    std::optional<Handedness> handedness;
 };
 
 enum class ThicknessKind { uniform, wedge, map };
@@ -107,6 +114,11 @@ struct VoronoiSectionSettings {
 /// (orientations) and, for a pixel centre equidistant from two seeds to rounding, its owner. Cells that
 /// contain no pixel centre are dropped; labels are 1 … N in the order the seeds were drawn.
 ThinSection random_voronoi_section(const VoronoiSectionSettings& settings);
+
+/// Gives every grain of an optically active mineral (quartz) a handedness, right or left with probability ½
+/// each, as they occur in rocks: one uniform_unit_interval draw per such grain, in the order of `grains`, from
+/// std::mt19937_64(seed) (a stream of its own, so the tessellation does not change). Other grains keep none.
+void draw_handedness(ThinSection& section, const MineralCatalog& catalog, std::uint64_t seed);
 
 /// The same with plain Voronoi cells (all grain sizes equal).
 ThinSection random_voronoi_section(const std::vector<std::string>& minerals, const std::vector<double>& weights,
