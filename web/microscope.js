@@ -307,6 +307,7 @@ function showNumbers() {
     ["mineral's nγ − nα", fixed(n.mineral_birefringence, 4)],
     ["2V", n.two_v_deg === null ? "— (isotropic mineral)" : fixed(n.two_v_deg, 1) + "°"],
     ["optic sign", n.optic_sign || "—"],
+    ["form (optically active)", n.handedness === null ? "— (inactive mineral)" : n.handedness + "-handed"],
   ];
   for (const [term, value] of rows) {
     const dt = document.createElement("dt"), dd = document.createElement("dd");

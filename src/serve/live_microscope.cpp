@@ -293,12 +293,19 @@ Reply LiveMicroscope::post_section(const std::vector<UploadedFile>& files) const
 Reply LiveMicroscope::grain_reply(const QueryParameters& query) const {
     query.refuse_unknown(view_parameter_names());
     const double wavelength_nm = query.optional_number("wavelength_nm", 360.0, 830.0).value_or(kWhiteLightNumbersNm);
+    const Handedness chosen = parse_handedness(query.choice("handedness", {"right", "left"}));
+    // The form of an optically active grain: the section's, else the one chosen on the page; null when inactive.
+    const auto form = [&](const ThinSectionGrain& grain) {
+        if (!catalog_.find(grain.mineral).optically_active()) return nlohmann::json(nullptr);
+        return nlohmann::json(handedness_name(grain.handedness.value_or(chosen)));
+    };
     if (query.has("section")) {
         const PickedGrain picked = picked_grain(query, [this](const QueryParameters& q) { return section(q); });
         nlohmann::json numbers = grain_json(grain_optics(catalog_.find(picked.grain->mineral), picked.grain->crystal_axes, picked.thickness_um, wavelength_nm));
         numbers["label"] = picked.grain->label;
         numbers["mineral"] = picked.grain->mineral;
         numbers["thickness_um"] = picked.thickness_um;
+        numbers["handedness"] = form(*picked.grain);
         return json_reply(numbers);
     }
     const ThinSection crystal = single_crystal_section(query, catalog_);
@@ -306,6 +313,7 @@ Reply LiveMicroscope::grain_reply(const QueryParameters& query) const {
     nlohmann::json numbers = grain_json(grain_optics(catalog_.find(grain.mineral), grain.crystal_axes, crystal.thickness_um, wavelength_nm));
     numbers["mineral"] = grain.mineral;
     numbers["thickness_um"] = crystal.thickness_um;
+    numbers["handedness"] = form(grain);
     return json_reply(numbers);
 }
 

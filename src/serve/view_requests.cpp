@@ -111,7 +111,9 @@ ThinSection single_crystal_section(const QueryParameters& query, const MineralCa
     section.name = "single crystal of " + mineral.name;
     section.width_px = section.height_px = kCrystalFieldPx;
     section.labels.assign(static_cast<std::size_t>(kCrystalFieldPx) * kCrystalFieldPx, 1);
-    section.grains = {ThinSectionGrain{1, mineral.name, indicatrix_axes(mineral, orientation_from(query)), std::nullopt, 0, std::nullopt}};
+    std::optional<Handedness> handedness;
+    if (mineral.optically_active()) handedness = parse_handedness(query.choice("handedness", {"right", "left"}));
+    section.grains = {ThinSectionGrain{1, mineral.name, indicatrix_axes(mineral, orientation_from(query)), std::nullopt, 0, handedness}};
     section.thickness_um = thickness_override_um(query).value_or(30.0);
     section.validate();
     return section;
@@ -132,17 +134,18 @@ OrthoscopeRequest orthoscope_view_request(const QueryParameters& query, const Mi
 
 ConoscopeRequest conoscope_view_request(const QueryParameters& query, const MineralCatalog& catalog, const SectionLookup& sections) {
     ConoscopeRequest request;
+    request.handedness = parse_handedness(query.choice("handedness", {"right", "left"}));
     if (query.has("section")) {
         const PickedGrain picked = picked_grain(query, sections);
         request.mineral = picked.grain->mineral;
         request.orientation.euler_zyz_deg = euler_zyz_deg_of(picked.grain->crystal_axes);
         request.thickness_um = picked.thickness_um;
+        request.handedness = picked.grain->handedness.value_or(request.handedness);  // a section may name the grain's form
     } else {
         request.mineral = mineral_from(query, catalog).name;
         request.orientation = orientation_from(query);
         request.thickness_um = thickness_override_um(query).value_or(30.0);
     }
-    request.handedness = parse_handedness(query.choice("handedness", {"right", "left"}));
     request.numerical_aperture = query.number("na", 0.05, 0.95, 0.85);
     request.size_px = static_cast<int>(query.integer("size_px", 64, kServerMaxFigurePx, 512));
     set_light_and_polars(request, query);

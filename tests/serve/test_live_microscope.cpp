@@ -3,6 +3,7 @@
 // a message that names the parameter.
 #include "petroscope/core/error.hpp"
 #include "petroscope/io/data_files.hpp"
+#include "petroscope/io/thin_section_file.hpp"
 #include "petroscope/serve/live_microscope.hpp"
 #include "petroscope/serve/view_requests.hpp"
 
@@ -86,6 +87,32 @@ TEST(LiveMicroscope, TheBertrandViewOfAPickedGrainIsThatGrainsFigure) {
     EXPECT_TRUE(grain.contains("label"));
     EXPECT_GT(grain["retardation_nm"].get<double>(), 0.0);
     EXPECT_EQ(grain["thickness_um"].get<double>(), 30.0);
+}
+
+// The numbers name an optically active grain's form: a section grain's own, a single crystal's as chosen.
+TEST(LiveMicroscope, TheNumbersNameTheFormOfAQuartzGrain) {
+    const ThinSection granite = read_thin_section(std::filesystem::path(PETROSCOPE_SOURCE_DIR) / "thin_sections" / "granite", catalog());
+    int quartz_grains = 0;
+    for (int y = 8; y < granite.height_px && quartz_grains < 3; y += 64) {
+        for (int x = 8; x < granite.width_px && quartz_grains < 3; x += 64) {
+            const ThinSectionGrain& grain = granite.grain_at(x, y);
+            const nlohmann::json numbers = nlohmann::json::parse(
+                get("/api/grain", {{"section", "granite"}, {"x", std::to_string(x)}, {"y", std::to_string(y)}, {"handedness", "right"}}).body);
+            if (grain.mineral != "quartz") {
+                EXPECT_TRUE(numbers["handedness"].is_null()) << grain.mineral;
+                continue;
+            }
+            ASSERT_TRUE(grain.handedness.has_value());
+            EXPECT_EQ(numbers["handedness"], handedness_name(*grain.handedness));  // the section's, whatever the page chose
+            ++quartz_grains;
+        }
+    }
+    EXPECT_GE(quartz_grains, 1);
+    for (const std::string hand : {"right", "left"}) {
+        const nlohmann::json crystal = nlohmann::json::parse(get("/api/grain", {{"mineral", "quartz"}, {"cut", "optic-axis"}, {"handedness", hand}}).body);
+        EXPECT_EQ(crystal["handedness"], hand);
+    }
+    EXPECT_TRUE(nlohmann::json::parse(get("/api/grain", {{"mineral", "calcite"}, {"handedness", "left"}}).body)["handedness"].is_null());
 }
 
 std::vector<UploadedFile> granite_files() {
