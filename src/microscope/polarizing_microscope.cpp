@@ -223,7 +223,8 @@ namespace {
 // An optically active crystal's two forward waves in the single pass (docs/theory.md §9, "The single-pass slab:
 // coupled modes"): the inactive crystal's waves, coupled inside by the gyration g (lab frame) as da/dz = i·k₀·Q·a,
 // Q = [[q₀, i·c₀], [−i·c₁, q₁]] (optics/slab.hpp, gyration_coupling). Q = V·diag(λ)·V⁻¹, so the two waves of
-// the active crystal are V's columns in the inactive basis, with q = λ: returned as (λ, V, V⁻¹).
+// the active crystal are V's columns in the inactive basis, with q = λ: returned as (λ, V, V⁻¹). The coupling
+// takes the inactive waves' real fields, which are those of a transparent crystal such as quartz.
 struct CoupledWaves {
     Eigen::Vector2cd q;
     Eigen::Matrix2cd basis, inverse;

@@ -293,11 +293,11 @@ Reply LiveMicroscope::post_section(const std::vector<UploadedFile>& files) const
 Reply LiveMicroscope::grain_reply(const QueryParameters& query) const {
     query.refuse_unknown(view_parameter_names());
     const double wavelength_nm = query.optional_number("wavelength_nm", 360.0, 830.0).value_or(kWhiteLightNumbersNm);
-    const Handedness chosen = parse_handedness(query.choice("handedness", {"right", "left"}));
-    // The form of an optically active grain: the section's, else the one chosen on the page; null when inactive.
+    // The form of an optically active grain as rendered (a section grain naming none is right-handed; a single
+    // crystal's is the one chosen on the page); null when inactive.
     const auto form = [&](const ThinSectionGrain& grain) {
         if (!catalog_.find(grain.mineral).optically_active()) return nlohmann::json(nullptr);
-        return nlohmann::json(handedness_name(grain.handedness.value_or(chosen)));
+        return nlohmann::json(handedness_name(grain.handedness.value_or(Handedness::right)));
     };
     if (query.has("section")) {
         const PickedGrain picked = picked_grain(query, [this](const QueryParameters& q) { return section(q); });

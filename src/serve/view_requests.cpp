@@ -111,8 +111,8 @@ ThinSection single_crystal_section(const QueryParameters& query, const MineralCa
     section.name = "single crystal of " + mineral.name;
     section.width_px = section.height_px = kCrystalFieldPx;
     section.labels.assign(static_cast<std::size_t>(kCrystalFieldPx) * kCrystalFieldPx, 1);
-    std::optional<Handedness> handedness;
-    if (mineral.optically_active()) handedness = parse_handedness(query.choice("handedness", {"right", "left"}));
+    const Handedness chosen = parse_handedness(query.choice("handedness", {"right", "left"}));
+    const std::optional<Handedness> handedness = mineral.optically_active() ? std::optional(chosen) : std::nullopt;
     section.grains = {ThinSectionGrain{1, mineral.name, indicatrix_axes(mineral, orientation_from(query)), std::nullopt, 0, handedness}};
     section.thickness_um = thickness_override_um(query).value_or(30.0);
     section.validate();
@@ -140,7 +140,7 @@ ConoscopeRequest conoscope_view_request(const QueryParameters& query, const Mine
         request.mineral = picked.grain->mineral;
         request.orientation.euler_zyz_deg = euler_zyz_deg_of(picked.grain->crystal_axes);
         request.thickness_um = picked.thickness_um;
-        request.handedness = picked.grain->handedness.value_or(request.handedness);  // a section may name the grain's form
+        request.handedness = picked.grain->handedness.value_or(Handedness::right);  // the section's, as the orthoscope renders it
     } else {
         request.mineral = mineral_from(query, catalog).name;
         request.orientation = orientation_from(query);

@@ -115,14 +115,14 @@ struct VoronoiSectionSettings {
 /// contain no pixel centre are dropped; labels are 1 … N in the order the seeds were drawn.
 ThinSection random_voronoi_section(const VoronoiSectionSettings& settings);
 
-/// Gives every grain of an optically active mineral (quartz) a handedness, right or left with probability ½
-/// each, as they occur in rocks: one uniform_unit_interval draw per such grain, in the order of `grains`, from
-/// std::mt19937_64(seed) (a stream of its own, so the tessellation does not change). Other grains keep none.
-void draw_handedness(ThinSection& section, const MineralCatalog& catalog, std::uint64_t seed);
-
 /// The same with plain Voronoi cells (all grain sizes equal).
 ThinSection random_voronoi_section(const std::vector<std::string>& minerals, const std::vector<double>& weights,
                                    int grain_count, int size_px, double pixel_size_um, double thickness_um,
                                    std::uint64_t seed);
+
+/// Gives every grain of an optically active mineral (quartz) a handedness, right or left with probability ½
+/// each, as they occur in rocks: one uniform_unit_interval draw per such grain, in the order of `grains`, from
+/// std::mt19937_64(seed) (a stream of its own, so the tessellation does not change). Other grains keep none.
+void draw_handedness(ThinSection& section, const MineralCatalog& catalog, std::uint64_t seed);
 
 }  // namespace petroscope
