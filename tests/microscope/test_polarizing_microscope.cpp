@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <random>
 
 namespace petroscope {
 namespace {
@@ -92,6 +93,55 @@ TEST(GrainResponse, ABasalQuartzPlateTurnsThePlaneByItsRotatoryPower) {
                     expected);
         EXPECT_NEAR(crossed[0] / (crossed[0] + parallel[0]), expected, 1e-6 * expected) << (exact ? "exact" : "single pass");
     }
+}
+
+// The single pass couples an active crystal's inactive waves inside by the gyration (docs/theory.md §9), with the
+// inactive waves' face transfers. Against the exact waves of the active crystal (Berreman's bianisotropic modes,
+// their own face transfers), over random orientations, a condenser cone of NA 0.3, 30 µm and 1 mm, quartz's
+// gyration and 30 times it, the transmissions differ by 2.4e-7 and 6.9e-4: about as g², second order.
+TEST(GrainResponse, TheCoupledWavesOfAnActiveCrystalAreItsExactWaves) {
+    const double n_o = 1.54425, n_e = 1.55336, wavelength_nm = 589.3;
+    const double rho_axis = 21.72 * kPi / 180.0 * 1e-3;  // rad/µm
+    SectionMounting mounting;
+    mounting.slide = mounting.cover = constant_medium(Eigen::Vector3d::Constant(1.52));
+    mounting.cement = constant_medium(Eigen::Vector3d::Constant(1.54));
+    MicroscopeSettings settings;
+    settings.wavelengths_nm = {wavelength_nm};
+    settings.condenser_na = 0.3;
+    settings.condenser_rings = 2;
+    const MicroscopeOptics optics(settings, mounting);
+    std::mt19937_64 rng(8);
+    std::uniform_real_distribution<double> angle(0.0, 360.0);
+    std::array<double, 2> worst{};
+    for (const double scale : {1.0, 30.0}) {
+        for (int trial = 0; trial < 10; ++trial) {
+            DispersiveMedium quartz = constant_medium({n_o, n_o, n_e}, euler_zyz_deg(angle(rng), angle(rng) / 2.0, angle(rng)));
+            const Eigen::Vector3d rotatory_power = scale * Eigen::Vector3d(-0.5 * rho_axis, -0.5 * rho_axis, rho_axis);
+            quartz.gyration = [rotatory_power](double nm) { return gyration_tensor(rotatory_power, Eigen::Matrix3d::Identity(), nm, Handedness::right); };
+            const Eigen::Matrix3cd epsilon = quartz.permittivity(wavelength_nm);
+            const Eigen::Matrix3d chirality = quartz.chirality(wavelength_nm);
+            for (const double d_um : {30.0, 1000.0}) {
+                std::vector<double> coupled;
+                GrainResponse(optics, quartz).transmission(d_um, coupled);
+                double exact = 0.0;
+                for (std::size_t k = 0; k < optics.directions().size(); ++k) {
+                    const MicroscopeOptics::Path& path = optics.path(0, k);
+                    const MediumWaves waves = berreman_modes(epsilon, chirality, optics.directions()[k].xi);
+                    const Eigen::Vector2cd entry = forward_transmission(path.cement, waves) * path.into_crystal;
+                    const Eigen::Matrix2cd exit = path.to_eye * forward_transmission(waves, path.cement);
+                    const std::complex<double> i(0.0, 1.0);
+                    const Eigen::Vector2cd field = exit.col(0) * entry[0] * std::exp(i * path.k0_per_um * waves[0].q * d_um) +
+                                                   exit.col(1) * entry[1] * std::exp(i * path.k0_per_um * waves[1].q * d_um);
+                    exact += optics.directions()[k].weight * field.squaredNorm();
+                }
+                double& slot = worst[scale > 1.0 ? 1 : 0];
+                slot = std::max(slot, std::abs(coupled[0] - exact));
+            }
+        }
+    }
+    std::printf("coupled single pass against the exact waves, NA 0.3: quartz's gyration %.2g, 30 times it %.2g\n", worst[0], worst[1]);
+    EXPECT_LT(worst[0], 1e-6);
+    EXPECT_LT(worst[1], 1e-3);
 }
 
 // Extinction: at normal incidence the vibration directions are the principal axes of the central section of
