@@ -117,9 +117,7 @@ void bind_interface(py::module_& module) {
                 const Handedness hand = parse_handedness(handedness);
                 OpticalMedium medium = OpticalMedium::from_n_kappa(mineral.principal_n(wavelength_nm), mineral.principal_kappa(wavelength_nm),
                                                                    axes_argument(angles_deg));
-                if (mineral.optically_active()) {
-                    medium.gyration = gyration_tensor(mineral.principal_rotatory_power(wavelength_nm), Eigen::Matrix3d::Identity(), wavelength_nm, hand);
-                }
+                medium.gyration = mineral.gyration(wavelength_nm, hand);
                 return medium;
             },
             py::arg("mineral"), py::arg("wavelength_nm"), py::kw_only(), py::arg("euler_zyz_deg") = std::array<double, 3>{0.0, 0.0, 0.0},

@@ -73,8 +73,7 @@ public:
     /// Per photo, the responses of a grain with these axes.
     std::vector<GrainResponse> responses(const Eigen::Matrix3d& axes) const {
         std::vector<GrainResponse> result;
-        DispersiveMedium grain = DispersiveMedium::of(mineral_, axes);
-        grain.gyration = mineral_gyration(mineral_, options_.handedness);
+        const DispersiveMedium grain = DispersiveMedium::of(mineral_, axes, options_.handedness);
         for (const auto& optics : optics_) result.emplace_back(*optics, grain);
         return result;
     }

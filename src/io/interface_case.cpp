@@ -98,7 +98,7 @@ OpticalMedium parse_medium(const JsonValue& medium, double wavelength_nm, const 
             throw hand.error(e.what());
         }
     }
-    crystal.gyration = gyration_tensor(mineral->principal_rotatory_power(wavelength_nm), Eigen::Matrix3d::Identity(), wavelength_nm, handedness);
+    crystal.gyration = mineral->gyration(wavelength_nm, handedness);
     return crystal;
 }
 

@@ -136,10 +136,7 @@ Image render_orthoscope(const ThinSection& section, const MineralCatalog& catalo
     }
     std::vector<DispersiveMedium> media;
     for (const ThinSectionGrain& grain : section.grains) {
-        const Mineral& mineral = catalog.find(grain.mineral);
-        DispersiveMedium medium = DispersiveMedium::of(mineral, grain.crystal_axes);
-        medium.gyration = mineral_gyration(mineral, grain.handedness.value_or(Handedness::right));
-        media.push_back(std::move(medium));
+        media.push_back(DispersiveMedium::of(catalog.find(grain.mineral), grain.crystal_axes, grain.handedness.value_or(Handedness::right)));
     }
     media.push_back(settings.mounting.cement);
 

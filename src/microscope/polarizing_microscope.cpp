@@ -32,16 +32,14 @@ double DispersiveMedium::birefringence(double wavelength_nm) const {
     return n.maxCoeff() - n.minCoeff();
 }
 
-Eigen::Matrix3d DispersiveMedium::chirality(double wavelength_nm) const {
+Eigen::Matrix3d DispersiveMedium::lab_gyration(double wavelength_nm) const {
     if (!gyration) return Eigen::Matrix3d::Zero();
-    return chirality_tensor(turned_gyration(gyration(wavelength_nm), axes));
+    return turned_gyration(gyration(wavelength_nm), axes);
 }
 
 GyrationFunction mineral_gyration(const Mineral& mineral, Handedness handedness) {
     if (!mineral.optically_active()) return {};
-    return [&mineral, handedness](double wavelength_nm) {
-        return gyration_tensor(mineral.principal_rotatory_power(wavelength_nm), Eigen::Matrix3d::Identity(), wavelength_nm, handedness);
-    };
+    return [&mineral, handedness](double wavelength_nm) { return mineral.gyration(wavelength_nm, handedness); };
 }
 
 DispersiveMedium DispersiveMedium::of(const Mineral& mineral, const Eigen::Matrix3d& axes) {
@@ -51,6 +49,12 @@ DispersiveMedium DispersiveMedium::of(const Mineral& mineral, const Eigen::Matri
         medium.principal_kappa = [&mineral](double wavelength_nm) { return mineral.principal_kappa(wavelength_nm); };
     }
     medium.axes = axes;
+    return medium;
+}
+
+DispersiveMedium DispersiveMedium::of(const Mineral& mineral, const Eigen::Matrix3d& axes, Handedness handedness) {
+    DispersiveMedium medium = of(mineral, axes);
+    medium.gyration = mineral_gyration(mineral, handedness);
     return medium;
 }
 
@@ -263,8 +267,7 @@ GrainResponse::GrainResponse(const MicroscopeOptics& optics, const DispersiveMed
     single_pass_.resize(settings.wavelengths_nm.size());
     for (std::size_t w = 0; w < settings.wavelengths_nm.size(); ++w) {
         const Eigen::Matrix3cd epsilon = crystal_.permittivity(settings.wavelengths_nm[w]);
-        const Eigen::Matrix3d gyration = crystal_.gyration ? turned_gyration(crystal_.gyration(settings.wavelengths_nm[w]), crystal_.axes)
-                                                           : Eigen::Matrix3d::Zero();
+        const Eigen::Matrix3d gyration = crystal_.lab_gyration(settings.wavelengths_nm[w]);
         for (std::size_t k = 0; k < directions.size(); ++k) {
             const MicroscopeOptics::Path& path = optics.path(w, k);
             const MediumWaves waves = directions[k].xi.isZero() ? normal_incidence_waves(epsilon) : berreman_modes(epsilon, directions[k].xi);

@@ -54,6 +54,10 @@ Eigen::Vector3d Mineral::principal_rotatory_power(double wavelength_nm) const {
     return along_xyz(*this, listed);
 }
 
+Eigen::Matrix3d Mineral::gyration(double wavelength_nm, Handedness handedness) const {
+    return gyration_tensor(principal_rotatory_power(wavelength_nm), Eigen::Matrix3d::Identity(), wavelength_nm, handedness);
+}
+
 bool Mineral::absorbing() const {
     return std::any_of(axes.begin(), axes.end(), [](const PrincipalAxis& axis) { return axis.kappa.has_value(); });
 }

@@ -289,10 +289,9 @@ LocalModes<Real> general_modes(const OpticalMedium& medium, double xi_double) {
     const Real xi = xi_double;
     const bool lossless = medium.is_lossless();
     std::array<std::complex<Real>, 4> roots = quartic_roots(local, xi, active && lossless);
-    // A lossless active medium's M(q) is Hermitian for real q, so det M(q) is real there and its roots are real
-    // or conjugate pairs. Where the gyration barely splits the two waves of a direction, two close real roots
-    // come out of the rounding as a pair with imaginary parts of about √ε (Newton's accuracy at a double
-    // root): within that they are real, and a pair that close is one double root.
+    // A lossless active medium's roots are real or conjugate pairs (quartic_roots). Two close real roots, where the
+    // gyration barely splits the two waves of a direction, keep imaginary parts of rounding size: within that they
+    // are real, and a pair within about √ε (Newton's accuracy at a double root) is one double root.
     Real double_root_squared = Thresholds<Real>::double_root_squared;
     if (active && lossless) {
         roots = real_within_rounding(roots);

@@ -72,6 +72,9 @@ CrystalOrientation orientation_from(const QueryParameters& query) {
     return orientation;
 }
 
+// The form of an optically active single crystal chosen on the page.
+Handedness handedness_from(const QueryParameters& query) { return parse_handedness(query.choice("handedness", {"right", "left"})); }
+
 const Mineral& mineral_from(const QueryParameters& query, const MineralCatalog& catalog) {
     const std::string name = query.text_or("mineral", "muscovite");
     try {
@@ -111,7 +114,7 @@ ThinSection single_crystal_section(const QueryParameters& query, const MineralCa
     section.name = "single crystal of " + mineral.name;
     section.width_px = section.height_px = kCrystalFieldPx;
     section.labels.assign(static_cast<std::size_t>(kCrystalFieldPx) * kCrystalFieldPx, 1);
-    const Handedness chosen = parse_handedness(query.choice("handedness", {"right", "left"}));
+    const Handedness chosen = handedness_from(query);
     const std::optional<Handedness> handedness = mineral.optically_active() ? std::optional(chosen) : std::nullopt;
     section.grains = {ThinSectionGrain{1, mineral.name, indicatrix_axes(mineral, orientation_from(query)), std::nullopt, 0, handedness}};
     section.thickness_um = thickness_override_um(query).value_or(30.0);
@@ -134,7 +137,7 @@ OrthoscopeRequest orthoscope_view_request(const QueryParameters& query, const Mi
 
 ConoscopeRequest conoscope_view_request(const QueryParameters& query, const MineralCatalog& catalog, const SectionLookup& sections) {
     ConoscopeRequest request;
-    request.handedness = parse_handedness(query.choice("handedness", {"right", "left"}));
+    request.handedness = handedness_from(query);
     if (query.has("section")) {
         const PickedGrain picked = picked_grain(query, sections);
         request.mineral = picked.grain->mineral;

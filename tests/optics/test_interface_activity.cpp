@@ -24,14 +24,6 @@ using Kind = InterfaceWave::Kind;
 // Quartz's gyration along its axis at 589.3 nm, g₃₃ = λρ/π with ρ = 21.72°/mm.
 constexpr double kQuartzGyration = 0.5893 * 21.72e-3 / 180.0;
 
-// A lossless medium: isotropic (kind 0), uniaxial (1) or biaxial (2), random orientation.
-OpticalMedium random_medium(std::mt19937_64& rng, int kind) {
-    std::uniform_real_distribution<double> unit(0.0, 1.0);
-    if (kind == 0) return OpticalMedium::isotropic(1.0 + 1.6 * unit(rng));
-    const Indicatrix crystal = kind == 1 ? testing::random_uniaxial(rng) : testing::random_biaxial(rng);
-    return OpticalMedium{crystal.principal_n.cast<std::complex<double>>(), crystal.axes};
-}
-
 // A random symmetric matrix whose entries lie within ±scale.
 Eigen::Matrix3d random_symmetric(std::mt19937_64& rng, double scale) {
     std::uniform_real_distribution<double> entry(-scale, scale);
@@ -111,8 +103,8 @@ TEST(InterfaceActivity, AVanishingGyrationGivesTheInactiveWaves) {
         double worst_energy = 0.0;
         for (int i = 0; i < 3000; ++i) {
             const bool active_first = i % 2 == 1;
-            const OpticalMedium medium1 = random_medium(rng, active_first ? 1 + static_cast<int>(rng() % 2) : 0);
-            const OpticalMedium medium2 = random_medium(rng, static_cast<int>(rng() % 3));
+            const OpticalMedium medium1 = testing::random_medium_of_kind(rng, active_first ? 1 + static_cast<int>(rng() % 2) : 0);
+            const OpticalMedium medium2 = testing::random_medium_of_kind(rng, static_cast<int>(rng() % 3));
             OpticalMedium barely1 = medium1, barely2 = medium2;
             (active_first ? barely1 : barely2).gyration = random_symmetric(rng, scale);
             const InterfaceIncidence incidence = random_incidence(rng, medium1, 80.0);
@@ -141,8 +133,8 @@ TEST(InterfaceActivity, DoubleArithmeticAgreesWithLongDouble) {
     Differences differences;
     double worst_energy = 0.0;
     for (int i = 0; i < 3000; ++i) {
-        OpticalMedium medium1 = random_medium(rng, static_cast<int>(rng() % 3));
-        OpticalMedium medium2 = random_medium(rng, static_cast<int>(rng() % 3));
+        OpticalMedium medium1 = testing::random_medium_of_kind(rng, static_cast<int>(rng() % 3));
+        OpticalMedium medium2 = testing::random_medium_of_kind(rng, static_cast<int>(rng() % 3));
         const double scale = kQuartzGyration * std::pow(100.0, unit(rng));
         if (i % 3 != 1) medium2.gyration = random_symmetric(rng, scale);
         if (i % 3 != 0) medium1.gyration = random_symmetric(rng, scale);

@@ -1,6 +1,7 @@
 #pragma once
 // Random crystals and directions for property tests (fixed seeds: every run checks the same cases).
 #include "petroscope/optics/indicatrix.hpp"
+#include "petroscope/optics/medium.hpp"
 
 #include <Eigen/Geometry>
 
@@ -35,6 +36,18 @@ inline Indicatrix random_uniaxial(std::mt19937_64& rng) {
     const double n_o = base(rng);
     const double n_e = n_o + birefringence(rng);
     return Indicatrix{{n_o, n_o, n_e}, random_rotation(rng)};
+}
+
+/// A lossless medium of each kind (0 isotropic, 1 uniaxial, 2 biaxial), or an absorbing uniaxial one (3).
+inline OpticalMedium random_medium_of_kind(std::mt19937_64& rng, int kind) {
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    if (kind == 0) return OpticalMedium::isotropic(1.0 + 1.6 * unit(rng));
+    if (kind == 3) {
+        const std::complex<double> n_o(1.5 + unit(rng), 0.5 * unit(rng)), n_e(1.5 + unit(rng), 0.5 * unit(rng));
+        return OpticalMedium{Eigen::Vector3cd(n_o, n_o, n_e), random_rotation(rng)};
+    }
+    const Indicatrix crystal = kind == 1 ? random_uniaxial(rng) : random_biaxial(rng);
+    return OpticalMedium{crystal.principal_n.cast<std::complex<double>>(), crystal.axes};
 }
 
 }  // namespace petroscope::testing

@@ -32,13 +32,17 @@ struct DispersiveMedium {
 
     /// The mineral's dispersion; the mineral must outlive the medium.
     static DispersiveMedium of(const Mineral& mineral, const Eigen::Matrix3d& axes = Eigen::Matrix3d::Identity());
+    /// The same with its optical activity, of its `handedness` form (none for an inactive mineral).
+    static DispersiveMedium of(const Mineral& mineral, const Eigen::Matrix3d& axes, Handedness handedness);
     /// n + iκ along the axes at `wavelength_nm` (time dependence exp(−iωt): absorption has Im ε > 0).
     OpticalMedium at(double wavelength_nm) const;
     Eigen::Matrix3cd permittivity(double wavelength_nm) const { return at(wavelength_nm).permittivity(); }
     /// The largest minus the smallest principal index at `wavelength_nm`.
     double birefringence(double wavelength_nm) const;
-    /// The chirality tensor κ in the lab frame (optics/gyration.hpp) of the gyration turned by the axes; zero when inactive.
-    Eigen::Matrix3d chirality(double wavelength_nm) const;
+    /// The gyration tensor turned by the axes, in the lab frame; zero when inactive.
+    Eigen::Matrix3d lab_gyration(double wavelength_nm) const;
+    /// The chirality tensor κ (optics/gyration.hpp) of lab_gyration.
+    Eigen::Matrix3d chirality(double wavelength_nm) const { return chirality_tensor(lab_gyration(wavelength_nm)); }
 };
 
 /// The gyration tensor of `mineral`'s `handedness` form in its indicatrix frame (optics/gyration.hpp); empty for

@@ -1,6 +1,7 @@
 #pragma once
 // A mineral's optical data: principal indices with their dispersion, absorption, and their sources.
 #include "petroscope/optics/dispersion.hpp"
+#include "petroscope/optics/gyration.hpp"
 #include "petroscope/optics/orientation.hpp"
 
 #include <Eigen/Core>
@@ -48,6 +49,9 @@ struct Mineral {
     bool optically_active() const { return !rotatory_powers.empty(); }
     /// Rotatory power (rad/µm) of the right-handed form for waves along X, Y, Z; zero for an inactive mineral.
     Eigen::Vector3d principal_rotatory_power(double wavelength_nm) const;
+    /// Landau's gyration tensor of its `handedness` form in its indicatrix frame (optics/gyration.hpp); zero for
+    /// an inactive mineral.
+    Eigen::Matrix3d gyration(double wavelength_nm, Handedness handedness) const;
     /// The axes whose formula is used outside its stated validity range at some of `wavelengths_nm`,
     /// as readable warnings.
     std::vector<std::string> range_warnings(const std::vector<double>& wavelengths_nm) const;
