@@ -136,3 +136,12 @@ def test_the_michel_levy_chart_equals_the_command_line(run_cli, tmp_path):
     assert colours["birefringence"] == pytest.approx(sidecar["plate"]["birefringence"], rel=1e-12)
     # Γ = 0 is black; Y = 1 would be the light itself.
     assert colours["xyz"][0, 1] < 1e-6
+
+
+def test_a_grains_form_is_checked():
+    assert petroscope.Grain(0, "quartz", euler_zyz_deg=(0, 90, 0), handedness="left").handedness == "left"
+    assert petroscope.Grain(0, "quartz", euler_zyz_deg=(0, 90, 0)).handedness is None  # right when rendered
+    with pytest.raises(ValueError, match="calcite is not optically active"):
+        petroscope.Grain(0, "calcite", handedness="left")
+    with pytest.raises(ValueError, match="expected right or left"):
+        petroscope.Grain(0, "quartz", handedness="sideways")
