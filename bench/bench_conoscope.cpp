@@ -88,6 +88,18 @@ void QuartzThickPlate(benchmark::State& state) {
     }
 }
 
+// The same for crystals without optical activity: the default figure (muscovite, 30 µm, acute bisectrix) and
+// calcite 30 µm on its optic axis, 512², without and with the gypsum plate (second argument 1).
+void InactivePlate(benchmark::State& state) {
+    ConoscopeRequest request;
+    request.mineral = state.range(0) == 0 ? "muscovite" : "calcite";
+    if (state.range(1) == 1) request.plate = PlateRequest{};
+    for (auto _ : state) {
+        ConoscopeFigure figure = render_conoscope_figure(plan_conoscope(request, catalog()));
+        benchmark::DoNotOptimize(figure.image.linear_rgb.pixels.data());
+    }
+}
+
 void WhiteLightBiaxial(benchmark::State& state) { run_figure(state, "muscovite", true); }
 void WhiteLightUniaxial(benchmark::State& state) { run_figure(state, "calcite", true); }
 // The same with the modes solved at every wavelength (--exact-spectrum) instead of at 8 spectral nodes.
@@ -98,6 +110,7 @@ void MonochromaticUniaxial(benchmark::State& state) { run_figure(state, "calcite
 
 BENCHMARK(LibraryLayerDefaultFigure)->Arg(512)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(QuartzThickPlate)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(InactivePlate)->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(WhiteLightBiaxial)->Arg(128)->Arg(256)->Arg(512)->Arg(1024)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(WhiteLightUniaxial)->Arg(128)->Arg(256)->Arg(512)->Arg(1024)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(WhiteLightBiaxialExactSpectrum)->Arg(512)->Unit(benchmark::kMillisecond)->UseRealTime();

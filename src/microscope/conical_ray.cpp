@@ -232,23 +232,27 @@ SlabCrossing cross_slab(const Eigen::Matrix3cd& crystal_epsilon, const Eigen::Ve
     Eigen::Matrix2cd to_waves;
     for (int m = 0; m < 2; ++m) to_waves.row(m) = air[m].e_field.adjoint() * basis;
     const Eigen::Matrix2cd incident = to_waves * coherency_sp * to_waves.adjoint();
-    // Waves of one direction in a lossless medium carry no cross flux, so powers add: |S_z|·(coherency)ₘₘ.
-    const auto power = [](const BerremanMode& first, const BerremanMode& second, const Eigen::Matrix2cd& coherency) {
-        return std::abs(first.flux_z) * coherency(0, 0).real() + std::abs(second.flux_z) * coherency(1, 1).real();
+    // Waves of one direction in a lossless medium carry no cross flux, so powers add: Σₘ |S_z,ₘ|·Cₘₘ. Only the
+    // diagonal of a coherency a·C·aᴴ carried by an amplitude matrix a is formed.
+    const auto diagonal = [](const Eigen::Matrix2cd& a, const Eigen::Matrix2cd& coherency) -> Eigen::Vector2d {
+        return (a * coherency).cwiseProduct(a.conjugate()).rowwise().sum().real();
     };
-    const double incident_flux = power(air[0], air[1], incident);
+    const auto power = [](const BerremanMode& first, const BerremanMode& second, const Eigen::Vector2d& coherency_diagonal) {
+        return std::abs(first.flux_z) * coherency_diagonal[0] + std::abs(second.flux_z) * coherency_diagonal[1];
+    };
+    const double incident_flux = power(air[0], air[1], incident.diagonal().real());
     const ForwardBoundary entry = forward_boundary(air, crystal);
-    const Eigen::Matrix2cd inside = entry.transmission * incident * entry.transmission.adjoint();
+    const Eigen::Vector2d inside = diagonal(entry.transmission, incident);
     SlabCrossing crossing;
-    crossing.largest_power_sum = (power(crystal[0], crystal[1], inside) +
-                                  power(air[2], air[3], entry.reflection * incident * entry.reflection.adjoint())) / incident_flux;
+    crossing.largest_power_sum =
+        (power(crystal[0], crystal[1], inside) + power(air[2], air[3], diagonal(entry.reflection, incident))) / incident_flux;
     const ForwardBoundary exit = forward_boundary(crystal, air);
     for (int m = 0; m < 2; ++m) {
-        const double carried = crystal[m].flux_z * inside(m, m).real() / incident_flux;
+        const double carried = crystal[m].flux_z * inside[m] / incident_flux;
         if (crystal[m].evanescent || !(carried > 0.0)) continue;
-        const Eigen::Matrix2cd unit = Eigen::Vector2cd::Unit(m) * Eigen::RowVector2cd::Unit(m);
-        const double transmitted = power(air[0], air[1], exit.transmission * unit * exit.transmission.adjoint()) / crystal[m].flux_z;
-        const double reflected = power(crystal[2], crystal[3], exit.reflection * unit * exit.reflection.adjoint()) / crystal[m].flux_z;
+        // Wave m alone (coherency e_m e_mᵀ): the squared moduli of column m.
+        const double transmitted = power(air[0], air[1], exit.transmission.col(m).cwiseAbs2()) / crystal[m].flux_z;
+        const double reflected = power(crystal[2], crystal[3], exit.reflection.col(m).cwiseAbs2()) / crystal[m].flux_z;
         crossing.largest_power_sum = std::max(crossing.largest_power_sum, transmitted + reflected);
         const Eigen::Vector3d poynting = crystal[m].e_field.cross(crystal[m].h_field.conjugate()).real();
         crossing.waves[m] = {poynting.normalized(), carried * transmitted};

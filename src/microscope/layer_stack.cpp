@@ -5,6 +5,8 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -17,14 +19,75 @@ Eigen::Matrix3cd ambient_permittivity(double ambient_n) {
     return Eigen::Matrix3cd::Identity() * (ambient_n * ambient_n);
 }
 
+using Matrix42cd = Eigen::Matrix<std::complex<double>, 4, 2>;
+
+// a·x = b by Gaussian elimination with partial pivoting (Golub & Van Loan, Matrix Computations, 4th ed., §3.4),
+// written out for 4×4: the pivot is the largest |aᵢₖ|², the same choice as the largest |aᵢₖ| without a hypot each,
+// and its reciprocal a* / |a|² (one real division; the moduli here are far from overflow) serves both sweeps.
+Matrix42cd solve_4x4(Eigen::Matrix4cd a, Matrix42cd b) {
+    std::array<std::complex<double>, 4> inverse_pivot;
+    for (int k = 0; k < 4; ++k) {
+        int pivot = k;
+        for (int r = k + 1; r < 4; ++r) {
+            if (std::norm(a(r, k)) > std::norm(a(pivot, k))) pivot = r;
+        }
+        if (pivot != k) {
+            a.row(k).swap(a.row(pivot));
+            b.row(k).swap(b.row(pivot));
+        }
+        inverse_pivot[k] = std::conj(a(k, k)) * (1.0 / std::norm(a(k, k)));
+        for (int r = k + 1; r < 4; ++r) {
+            const std::complex<double> factor = a(r, k) * inverse_pivot[k];
+            for (int c = k + 1; c < 4; ++c) a(r, c) -= factor * a(k, c);
+            b.row(r) -= factor * b.row(k);
+        }
+    }
+    for (int k = 3; k >= 0; --k) {
+        for (int c = k + 1; c < 4; ++c) b.row(k) -= a(k, c) * b.row(c);
+        b.row(k) *= inverse_pivot[k];
+    }
+    return b;
+}
+
+// The rows ψᴴJ of two waves for the cross flux ψᴴJφ (S_z = ψᴴJψ, J = ¼·[[0, 1], [1, 0]] ⊕ ¼·[[0, 1], [1, 0]] for
+// ψ = (E_x, H_y, E_y, −H_x); Berreman, JOSA 62, 502 (1972)).
+Eigen::Matrix<std::complex<double>, 2, 4> flux_rows(const BerremanMode& first, const BerremanMode& second) {
+    Eigen::Matrix<std::complex<double>, 2, 4> rows;
+    for (int m = 0; m < 2; ++m) {
+        const Eigen::Vector4cd& psi = (m == 0 ? first : second).psi;
+        rows.row(m) << std::conj(psi[1]), std::conj(psi[0]), std::conj(psi[3]), std::conj(psi[2]);
+    }
+    return 0.25 * rows;
+}
+
+// Every wave of `waves` propagates in a lossless medium: berreman_modes and normal_incidence_waves give such waves
+// a real q.
+bool all_propagating(const MediumWaves& waves) {
+    return std::all_of(waves.begin(), waves.end(), [](const BerremanMode& wave) { return wave.q.imag() == 0.0; });
+}
+
 }  // namespace
 
 ForwardBoundary forward_boundary(const MediumWaves& from, const MediumWaves& to) {
+    if (all_propagating(from)) {
+        // G·t − B·r = F (G: `to`'s forward waves, F and B: `from`'s forward and backward ones). In a lossless medium
+        // waves of different q carry no cross flux (Poynting's theorem: JΔ = ΔᴴJ), so Fᴴ J B = 0 and Bᴴ J F = 0:
+        // projecting on Fᴴ J and Bᴴ J splits the 4×4 system into two 2×2 ones.
+        Matrix42cd forward_to, forward_from, backward_from;
+        forward_to << to[0].psi, to[1].psi;
+        forward_from << from[0].psi, from[1].psi;
+        backward_from << from[2].psi, from[3].psi;
+        const Eigen::Matrix<std::complex<double>, 2, 4> forward_rows = flux_rows(from[0], from[1]);
+        const Eigen::Matrix<std::complex<double>, 2, 4> backward_rows = flux_rows(from[2], from[3]);
+        const Eigen::Matrix2cd transmission = (forward_rows * forward_to).inverse() * (forward_rows * forward_from);
+        const Eigen::Matrix2cd reflection = (backward_rows * backward_from).inverse() * (backward_rows * forward_to * transmission);
+        return {transmission, reflection};
+    }
     Eigen::Matrix4cd boundary;
     boundary << to[0].psi, to[1].psi, -from[2].psi, -from[3].psi;
-    Eigen::Matrix<std::complex<double>, 4, 2> incident;
+    Matrix42cd incident;
     incident << from[0].psi, from[1].psi;
-    const Eigen::Matrix<std::complex<double>, 4, 2> amplitudes = boundary.partialPivLu().solve(incident);
+    const Matrix42cd amplitudes = solve_4x4(boundary, incident);
     return {amplitudes.topRows<2>(), amplitudes.bottomRows<2>()};
 }
 

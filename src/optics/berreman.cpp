@@ -14,6 +14,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 
@@ -36,7 +37,10 @@ constexpr double kDegenerateTolerance = 1e-8;
 // The largest |mᵢⱼ|, from the squared moduli (no hypot per entry).
 double max_abs(const Eigen::Matrix3cd& m) { return std::sqrt(m.cwiseAbs2().maxCoeff()); }
 
-bool amplitude_varies(Complex q) { return std::abs(q.imag()) > kEvanescentTolerance * (1.0 + std::abs(q)); }
+// |z| without hypot's guard against overflow, which moduli of indices and fields never come near.
+double modulus(Complex z) { return std::sqrt(std::norm(z)); }
+
+bool amplitude_varies(Complex q) { return std::abs(q.imag()) > kEvanescentTolerance * (1.0 + modulus(q)); }
 
 // Time-averaged z flux of a tangential field, S_z = ½ Re(E × H*)_z = ½ Re(ψ₁ψ₂* + ψ₃ψ₄*) (Berreman 1972). The same in the lab and plane-of-incidence frames (a rotation about z).
 double flux_of(const Eigen::Vector4cd& psi) {
@@ -95,8 +99,10 @@ struct Medium {
            const Eigen::Matrix3d& chirality_lab = Eigen::Matrix3d::Zero())
         : xi(plane.xi), chiral(!chirality_lab.isZero(0.0)) {
         if (chiral) chirality = plane.rotation.transpose() * chirality_lab * plane.rotation;
-        const Eigen::Matrix3cd r = plane.rotation.cast<Complex>();
-        epsilon = r.transpose() * epsilon_lab * r;
+        // Rᵀ ε R with the real R applied to the real and imaginary parts apart (a lossless ε has none).
+        const Eigen::Matrix3d imaginary = epsilon_lab.imag();
+        epsilon.real() = plane.rotation.transpose() * epsilon_lab.real() * plane.rotation;
+        epsilon.imag() = imaginary.isZero(0.0) ? imaginary : Eigen::Matrix3d(plane.rotation.transpose() * imaginary * plane.rotation);
         if (chiral) epsilon += (chirality * chirality).cast<Complex>();
         const double scale = max_abs(epsilon_lab);
         isotropic_epsilon = epsilon_lab.trace() / 3.0;
@@ -272,6 +278,28 @@ struct OrderedSchur {
     }
 };
 
+// The unit eigenvector of Δ for the eigenvalue at position i of its Schur form Δ = U T Uᴴ: U·y with (T − tᵢᵢ)·y = 0,
+// yᵢ = 1 and y zero below i, by back substitution (Golub & Van Loan, Matrix Computations, 4th ed., §7.6.4). None
+// where an earlier eigenvalue lies within kBackSubstitutionGap·(1 + |tᵢᵢ|) of tᵢᵢ, where y is ill-determined;
+// reordering the Schur form (bring_to) serves there.
+constexpr double kBackSubstitutionGap = 1e-6;
+template <typename Scalar>
+std::optional<Eigen::Vector4cd> schur_eigenvector(const OrderedSchur<Scalar>& decomposition, int i) {
+    const auto& t = decomposition.t;
+    const double gap = kBackSubstitutionGap * (1.0 + std::abs(t(i, i)));
+    Eigen::Matrix<Scalar, 4, 1> y = Eigen::Matrix<Scalar, 4, 1>::Zero();
+    y[i] = 1.0;
+    for (int k = i - 1; k >= 0; --k) {
+        const Scalar denominator = t(k, k) - t(i, i);
+        if (!(std::abs(denominator) > gap)) return std::nullopt;
+        Scalar sum = 0.0;
+        for (int j = k + 1; j <= i; ++j) sum += t(k, j) * y[j];
+        y[k] = -sum / denominator;
+    }
+    const Eigen::Matrix<Scalar, 4, 1> vector = decomposition.u * y;
+    return Eigen::Vector4cd(vector.template cast<Complex>() / vector.norm());
+}
+
 // The eigenvalues of Δ from its Schur form, each classified forward or backward by the sign of Im q or, when q
 // is real, by the flux of its eigenvector (the first Schur vector once it leads); then the forward pair's
 // invariant subspace as the leading Schur vectors once both lead, and the backward pair's likewise. The
@@ -287,6 +315,8 @@ Spectrum ordered_spectrum(const Medium& medium, const OrderedSchur<Scalar>& deco
         if (medium.lossless && !amplitude_varies(q)) q = q.real();
         if (amplitude_varies(q)) {
             forwardness[i] = q.imag();
+        } else if (const auto vector = schur_eigenvector(decomposition, i)) {
+            forwardness[i] = flux_of(*vector);
         } else {
             OrderedSchur<Scalar> leading = decomposition;
             leading.bring_to(i, 0);
@@ -380,8 +410,8 @@ std::array<PlaneMode, 2> pair_modes(const Medium& medium, const PlaneOfIncidence
     const Complex half_difference = 0.5 * (a(0, 0) - a(1, 1));
     const Complex root = std::sqrt(half_difference * half_difference + a(0, 1) * a(1, 0));
     std::array<Complex, 2> mu{mean - root, mean + root};
-    const double scale = 1.0 + std::max(std::abs(mu[0]), std::abs(mu[1]));
-    if (std::abs(mu[0] - mu[1]) <= kDegenerateTolerance * scale) {
+    const double scale = 1.0 + std::max(modulus(mu[0]), modulus(mu[1]));
+    if (modulus(mu[0] - mu[1]) <= kDegenerateTolerance * scale) {
         // Degenerate: every vector of the subspace is a mode. s-like: E·ρ̂ = ψ'₁ = 0. p-like: no cross flux with
         // it (the flux form G restricted to the subspace), or E·ŝ = ψ'₃ = 0 where G vanishes (evanescent);
         // the Euclidean complement if neither is independent of the s-like vector.
