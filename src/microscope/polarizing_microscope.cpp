@@ -107,10 +107,14 @@ std::vector<IlluminationSample> condenser_samples(double condenser_na, int rings
         const double ring_weight = weights[j] / nodes[j];
         samples.front().weight -= ring_weight;
         const double radius = condenser_na * std::sqrt(nodes[j]);
-        for (int m = 0; m < azimuths; ++m) {
-            const double azimuth = 2.0 * std::numbers::pi * (m + 0.5 * (j % 2)) / azimuths;  // alternate rings half a step apart
+        // Alternate rings half a step apart. azimuths is even: the second half of a ring is the first reversed,
+        // exactly, so that a crystal's waves serve each direction and its opposite (berreman_modes_both_ways).
+        const std::size_t first = samples.size();
+        for (int m = 0; m < azimuths / 2; ++m) {
+            const double azimuth = 2.0 * std::numbers::pi * (m + 0.5 * (j % 2)) / azimuths;
             samples.push_back({radius * Eigen::Vector2d(std::cos(azimuth), std::sin(azimuth)), ring_weight / azimuths});
         }
+        for (int m = 0; m < azimuths / 2; ++m) samples.push_back({-samples[first + m].xi, ring_weight / azimuths});
     }
     return samples;
 }
@@ -256,6 +260,30 @@ CoupledWaves coupled_waves(const MediumWaves& waves, const Eigen::Vector2d& xi, 
     return coupled;
 }
 
+// A crystal's waves for each direction; a direction and its opposite from one decomposition.
+std::vector<MediumWaves> crystal_waves(const Eigen::Matrix3cd& epsilon, const std::vector<IlluminationSample>& directions) {
+    std::vector<MediumWaves> waves(directions.size());
+    std::vector<bool> solved(directions.size(), false);
+    for (std::size_t k = 0; k < directions.size(); ++k) {
+        if (solved[k]) continue;
+        const Eigen::Vector2d& xi = directions[k].xi;
+        const auto opposite = std::find_if(directions.begin() + static_cast<std::ptrdiff_t>(k) + 1, directions.end(),
+                                           [&xi](const IlluminationSample& other) { return other.xi == -xi; });
+        if (xi.isZero()) {
+            waves[k] = normal_incidence_waves(epsilon);
+        } else if (opposite == directions.end()) {
+            waves[k] = berreman_modes(epsilon, xi);
+        } else {
+            const std::size_t j = static_cast<std::size_t>(opposite - directions.begin());
+            const auto both_ways = berreman_modes_both_ways(epsilon, xi);
+            waves[k] = both_ways[0];
+            waves[j] = both_ways[1];
+            solved[j] = true;
+        }
+    }
+    return waves;
+}
+
 }  // namespace
 
 GrainResponse::GrainResponse(const MicroscopeOptics& optics, const DispersiveMedium& crystal)
@@ -268,9 +296,10 @@ GrainResponse::GrainResponse(const MicroscopeOptics& optics, const DispersiveMed
     for (std::size_t w = 0; w < settings.wavelengths_nm.size(); ++w) {
         const Eigen::Matrix3cd epsilon = crystal_.permittivity(settings.wavelengths_nm[w]);
         const Eigen::Matrix3d gyration = crystal_.lab_gyration(settings.wavelengths_nm[w]);
+        const std::vector<MediumWaves> all_waves = crystal_waves(epsilon, directions);
         for (std::size_t k = 0; k < directions.size(); ++k) {
             const MicroscopeOptics::Path& path = optics.path(w, k);
-            const MediumWaves waves = directions[k].xi.isZero() ? normal_incidence_waves(epsilon) : berreman_modes(epsilon, directions[k].xi);
+            const MediumWaves& waves = all_waves[k];
             if (waves[0].evanescent || waves[1].evanescent) continue;
             Eigen::Vector2cd entry = forward_transmission(path.cement, waves) * path.into_crystal;
             Eigen::Matrix2cd exit = path.to_eye * forward_transmission(waves, path.cement);

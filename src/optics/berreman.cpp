@@ -460,10 +460,24 @@ std::array<PlaneMode, 2> pair_modes(const Medium& medium, const PlaneOfIncidence
             complete_mode(medium, plane, mu[1], vectors[1], forward)};
 }
 
+// The spectrum of −ξ in its plane frame (ρ̂ and ŝ reversed) from that of ξ, for a medium without optical activity.
+// There Berreman's Δ is that of ξ with ξ → −ξ, and Δ(−ξ) = −S·Δ(ξ)·S with S = diag(−1, 1, −1, 1) (delta_matrix: the
+// entries odd in ξ are those S flips). So S maps an invariant subspace of q to one of −q, and a backward pair of ξ
+// (S_z < 0, which S reverses, or Im q < 0) to the forward pair of −ξ.
+Spectrum opposite_spectrum(const Spectrum& spectrum) {
+    const Eigen::Vector4cd s(-1.0, 1.0, -1.0, 1.0);
+    return Spectrum{WavePair{s.asDiagonal() * spectrum.backward.basis, -spectrum.backward.generator},
+                    WavePair{s.asDiagonal() * spectrum.forward.basis, -spectrum.forward.generator}};
+}
+
 std::array<PlaneMode, 4> all_modes(const Medium& medium, const PlaneOfIncidence& plane, const Spectrum& spectrum) {
     const auto forward = pair_modes(medium, plane, spectrum.forward, true);
     const auto backward = pair_modes(medium, plane, spectrum.backward, false);
     return {forward[0], forward[1], backward[0], backward[1]};
+}
+
+std::array<BerremanMode, 4> lab_modes(const std::array<PlaneMode, 4>& modes) {
+    return {modes[0].mode, modes[1].mode, modes[2].mode, modes[3].mode};
 }
 
 // exp(x) for a 2×2 complex matrix by Lagrange–Sylvester interpolation on its eigenvalues m ± δ
@@ -545,8 +559,16 @@ std::array<BerremanMode, 4> berreman_modes(const Eigen::Matrix3cd& epsilon, cons
 std::array<BerremanMode, 4> berreman_modes(const Eigen::Matrix3cd& epsilon, const Eigen::Matrix3d& chirality, const Eigen::Vector2d& xi) {
     const PlaneOfIncidence plane(xi);
     const Medium medium(epsilon, plane, chirality);
-    const auto modes = all_modes(medium, plane, medium_spectrum(medium));
-    return {modes[0].mode, modes[1].mode, modes[2].mode, modes[3].mode};
+    return lab_modes(all_modes(medium, plane, medium_spectrum(medium)));
+}
+
+std::array<std::array<BerremanMode, 4>, 2> berreman_modes_both_ways(const Eigen::Matrix3cd& epsilon, const Eigen::Vector2d& xi) {
+    const PlaneOfIncidence plane(xi), opposite_plane(-xi);
+    const Medium medium(epsilon, plane), opposite(epsilon, opposite_plane);
+    const Spectrum spectrum = medium_spectrum(medium);
+    const auto modes = all_modes(medium, plane, spectrum);
+    const auto opposite_modes = all_modes(opposite, opposite_plane, medium.isotropic ? medium_spectrum(opposite) : opposite_spectrum(spectrum));
+    return {lab_modes(modes), lab_modes(opposite_modes)};
 }
 
 // Stable formulation: inside each layer the forward waves are referred to the layer's lower face and the

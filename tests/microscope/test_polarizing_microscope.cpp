@@ -3,9 +3,11 @@
 // indicatrix section, and the exact coherent 4×4 solution.
 #include "petroscope/microscope/polarizing_microscope.hpp"
 #include "petroscope/optics/orientation.hpp"
+#include "support/random_crystals.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -42,6 +44,39 @@ TEST(LayerStack, GlassPlateFollowsFresnelAtEveryAngle) {
         EXPECT_NEAR(std::norm(jones(1, 1)), std::pow(1.0 - r_p * r_p, 2), 1e-13) << angle_deg;
         EXPECT_LT(std::abs(jones(0, 1)) + std::abs(jones(1, 0)), 1e-13) << angle_deg;
     }
+}
+
+// forward_boundary must satisfy the boundary conditions G·t − B·r = F (tangential E and H continuous) and, where
+// every wave is lossless and propagating, carry each incident wave's flux into the transmitted and reflected waves.
+// Pairs of random media: lossless on both sides (the 2×2 split by flux orthogonality), an absorbing or an
+// evanescent medium below (the 4×4 elimination).
+TEST(LayerStack, ForwardBoundarySatisfiesTheBoundaryConditionsAndConservesFlux) {
+    std::mt19937_64 rng(2611);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    double worst_residual = 0.0, worst_flux = 0.0;
+    for (int i = 0; i < 3000; ++i) {
+        const OpticalMedium below = testing::random_medium_of_kind(rng, i % 4), above = testing::random_medium_of_kind(rng, (i / 4) % 3);
+        const double largest_xi = i % 8 == 7 ? 2.5 : 0.95;  // 2.5: the lower medium's waves are often evanescent
+        const double radius = largest_xi * std::sqrt(unit(rng)), azimuth = 2.0 * kPi * unit(rng);
+        const Eigen::Vector2d xi = radius * Eigen::Vector2d(std::cos(azimuth), std::sin(azimuth));
+        const MediumWaves from = berreman_modes(below.permittivity(), xi), to = berreman_modes(above.permittivity(), xi);
+        const ForwardBoundary boundary = forward_boundary(from, to);
+        for (int m = 0; m < 2; ++m) {
+            const Eigen::Vector4cd residual = to[0].psi * boundary.transmission(0, m) + to[1].psi * boundary.transmission(1, m) -
+                                              from[2].psi * boundary.reflection(0, m) - from[3].psi * boundary.reflection(1, m) - from[m].psi;
+            worst_residual = std::max(worst_residual, residual.norm() / from[m].psi.norm());
+            const auto lossless = [](const MediumWaves& waves) {
+                return std::all_of(waves.begin(), waves.end(), [](const BerremanMode& wave) { return wave.q.imag() == 0.0; });
+            };
+            if (!lossless(from) || !lossless(to)) continue;
+            const double carried = to[0].flux_z * std::norm(boundary.transmission(0, m)) + to[1].flux_z * std::norm(boundary.transmission(1, m)) -
+                                   from[2].flux_z * std::norm(boundary.reflection(0, m)) - from[3].flux_z * std::norm(boundary.reflection(1, m));
+            worst_flux = std::max(worst_flux, std::abs(carried - from[m].flux_z) / from[m].flux_z);
+        }
+    }
+    std::printf("forward_boundary: residual %.2e, flux %.2e\n", worst_residual, worst_flux);
+    EXPECT_LT(worst_residual, 1e-13);
+    EXPECT_LT(worst_flux, 1e-13);
 }
 
 // A uniaxial plate, c in the section plane at 45° between crossed polars, normal incidence: each mode m

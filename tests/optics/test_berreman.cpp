@@ -145,6 +145,35 @@ TEST(BerremanModes, AreMaxwellPlaneWavesClassifiedAndOrdered) {
     EXPECT_LT(worst_psi, 1e-15);
 }
 
+TEST(BerremanModes, BothWaysAgreeWithEachDirectionSolvedAlone) {
+    // berreman_modes_both_ways takes the waves of −ξ from the decomposition of ξ (inversion symmetry): they must be
+    // the waves berreman_modes finds for −ξ, classified and ordered alike, for lossless and absorbing media and for
+    // ξ beyond the smallest index (evanescent waves).
+    std::mt19937_64 rng(2027);
+    double worst_q = 0.0, worst_field = 0.0, worst_flux = 0.0;
+    for (int i = 0; i < 3000; ++i) {
+        const RandomMedium medium = random_medium(rng, i % 2 == 1 ? 0.3 : 0.0);
+        const Eigen::Vector2d xi = random_xi(rng, 1.2 * medium.n_min);
+        const auto both_ways = berreman_modes_both_ways(medium.epsilon, xi);
+        for (int direction = 0; direction < 2; ++direction) {
+            const auto alone = berreman_modes(medium.epsilon, direction == 0 ? xi : Eigen::Vector2d(-xi));
+            for (int m = 0; m < 4; ++m) {
+                const BerremanMode &a = alone[m], &b = both_ways[direction][m];
+                ASSERT_EQ(a.forward, b.forward);
+                ASSERT_EQ(a.evanescent, b.evanescent);
+                worst_q = std::max(worst_q, std::abs(a.q - b.q) / (1.0 + std::abs(a.q)));
+                // The same unit E up to a phase: |⟨a, b⟩| = 1.
+                worst_field = std::max(worst_field, 1.0 - std::abs(a.e_field.dot(b.e_field)) / (a.e_field.norm() * b.e_field.norm()));
+                worst_flux = std::max(worst_flux, std::abs(a.flux_z - b.flux_z));
+            }
+        }
+    }
+    std::printf("Berreman modes both ways: q %.2e, field 1 - |<a, b>| %.2e, flux %.2e\n", worst_q, worst_field, worst_flux);
+    EXPECT_LT(worst_q, 1e-13);
+    EXPECT_LT(worst_field, 1e-12);
+    EXPECT_LT(worst_flux, 1e-13);
+}
+
 TEST(BerremanModes, IsotropicMediaGiveClosedFormSAndPModes) {
     // s: E = ŝ = ẑ × ρ̂; p: E = (q ρ̂ − |ξ| ẑ)/n (unit, transverse part along +ρ̂, docs/conventions.md); ρ̂ = x̂ at
     // normal incidence, where p is E along x̂ and ψ_p = (1, n, 0, 0).

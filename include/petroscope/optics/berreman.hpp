@@ -50,6 +50,11 @@ struct BerremanMode {
 /// ρ̂ = ξ/|ξ| (x̂ at ξ = 0), ŝ = ẑ × ρ̂.
 std::array<BerremanMode, 4> berreman_modes(const Eigen::Matrix3cd& epsilon, const Eigen::Vector2d& xi);
 
+/// berreman_modes(epsilon, xi) and berreman_modes(epsilon, −xi) from one eigen-decomposition: without optical activity
+/// the medium is symmetric under inversion, so the forward waves of −ξ are the backward waves of ξ reversed
+/// (q → −q; ψ = (E_x, H_y, E_y, −H_x) → (−E_x, H_y, −E_y, −H_x)). The same modes to rounding.
+std::array<std::array<BerremanMode, 4>, 2> berreman_modes_both_ways(const Eigen::Matrix3cd& epsilon, const Eigen::Vector2d& xi);
+
 /// The same for an optically active medium: Landau's relation D = εE + i(g·N) × E written as the bianisotropic
 /// D = (ε + κ²)E + iκH, B = H − iκE with the chirality tensor κ (real symmetric, lab frame; optics/gyration.hpp),
 /// whose plane waves are Landau's exactly and whose 6×6 constitutive matrix is Hermitian for a Hermitian ε, so
