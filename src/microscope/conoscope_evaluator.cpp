@@ -108,6 +108,10 @@ ConoscopeEvaluator::ConoscopeEvaluator(const ConoscopeSettings& settings, const 
         node_samples_ = samples_of(node_frames, k0_thickness_for(nodes_->wavelengths_nm(), settings.thickness_um), settings.surround_n, 1);
         if (settings.gyration) set_gyration(*node_samples_, gyration_for(settings, nodes_->wavelengths_nm()));
         if (colour_weights != nullptr && !settings.plate) node_colour_.emplace(*nodes_, *colour_weights);
+        if (colour_weights != nullptr && settings.plate) {
+            plate_frame_ = plate_frame(*settings.plate, settings.wavelengths_nm, *nodes_, polars_.analyzer, polars_.analyzer_in);
+            if (plate_frame_) node_colour_.emplace(*nodes_, *colour_weights, plate_frame_->phase_rad);
+        }
     }
     if (settings.plate) {
         for (const double wavelength_nm : settings.wavelengths_nm) plate_jones_lab_.push_back(plate_jones_lab(*settings.plate, wavelength_nm, false));

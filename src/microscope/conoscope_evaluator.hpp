@@ -4,6 +4,7 @@
 // samples it flags; in white light the modes at a few spectral nodes, interpolated (spectral_nodes.hpp).
 #include "conoscope_kernel.hpp"
 #include "node_colour.hpp"
+#include "plate_terms.hpp"
 #include "spectral_nodes.hpp"
 
 #include "petroscope/microscope/conoscope.hpp"
@@ -77,10 +78,12 @@ private:
     /// false, with nothing written, where the fields or δ cannot be interpolated accurately enough. `colour`: as
     /// for spectral_pair.
     bool interpolated_pair(const KernelScratch& scratch, double* out_plus, double* out_minus, PairColour* colour) const;
-    /// The colour of both sides from their node fields and δ (NodeColour); false where this evaluator has no
-    /// colour weights or the product of the amplitudes is too rough to interpolate.
+    /// The colour of both sides from their node fields and δ (NodeColour, behind a plate its plate_xyz); false where this
+    /// evaluator has no colour weights or the product of the amplitudes is too rough to interpolate.
     bool colour_from_nodes(const KernelScratch& scratch, const std::array<std::array<NodeValues, 4>, 2>& side_fields,
                            const std::array<NodeValues, 2>& side_phase, PairColour& colour) const;
+    /// The node fields of one side in the lab: x of the fast and slow mode, then y of the fast and slow mode.
+    std::array<NodeValues, 4> lab_node_fields(const KernelScratch& scratch, int side, const std::array<NodeValues, 4>& fields) const;
     /// The node amplitude pairs behind the analyzer (one pair) or on ŝ and ρ̂ without it (two) of one side without
     /// a plate, as for interpolated_transmission; `pairs` says how many.
     std::array<NodeValues, 4> analyzed_node_amplitudes(const KernelScratch& scratch, int side, const std::array<NodeValues, 4>& fields,
@@ -126,7 +129,8 @@ private:
     // White light from spectral nodes (none: every wavelength solved).
     std::optional<SpectralNodes> nodes_;
     std::optional<SampleCrystal> node_samples_;
-    std::optional<NodeColour> node_colour_;  // with colour weights, without a plate
+    std::optional<PlateFrame> plate_frame_;  // with colour weights and a plate diagonal on its axes
+    std::optional<NodeColour> node_colour_;  // with colour weights, without a plate or with plate_frame_
 };
 
 }  // namespace petroscope::detail

@@ -122,15 +122,7 @@ bool ConoscopeEvaluator::interpolated_pair(const KernelScratch& scratch, double*
             interpolated_transmission(*nodes_, amplitudes, pairs, side_phase[side], out);
             continue;
         }
-        // The fields in the lab frame, E = s ŝ + p ρ̂, where the plate's analyzers are.
-        const SideFrame frame = side_frame(scratch, side);
-        std::array<NodeValues, 4> lab_fields{};
-        for (std::size_t mode = 0; mode < 2; ++mode) {
-            for (std::size_t j = 0; j < kSpectralNodes; ++j) {
-                lab_fields[mode][j] = fields[mode][j] * frame.s_x + fields[2 + mode][j] * frame.rho_x;
-                lab_fields[2 + mode][j] = fields[mode][j] * frame.s_y + fields[2 + mode][j] * frame.rho_y;
-            }
-        }
+        const std::array<NodeValues, 4> lab_fields = lab_node_fields(scratch, side, fields);
         PlateAnalyzers analyzers{polars_.analyzer_in ? 1 : 2, {}};
         for (std::size_t k = 0; k < 2; ++k) {
             for (std::size_t c = 0; c < 4; ++c) analyzers.lab[k][c] = spectral_samples_.plate_analyzer[k][c].data();
@@ -138,6 +130,19 @@ bool ConoscopeEvaluator::interpolated_pair(const KernelScratch& scratch, double*
         interpolated_transmission(*nodes_, lab_fields, side_phase[side], analyzers, out);
     }
     return true;
+}
+
+std::array<NodeValues, 4> ConoscopeEvaluator::lab_node_fields(const KernelScratch& scratch, int side, const std::array<NodeValues, 4>& fields) const {
+    // E = s ŝ + p ρ̂, where the plate's analyzers are.
+    const SideFrame frame = side_frame(scratch, side);
+    std::array<NodeValues, 4> lab_fields{};
+    for (std::size_t mode = 0; mode < 2; ++mode) {
+        for (std::size_t j = 0; j < kSpectralNodes; ++j) {
+            lab_fields[mode][j] = fields[mode][j] * frame.s_x + fields[2 + mode][j] * frame.rho_x;
+            lab_fields[2 + mode][j] = fields[mode][j] * frame.s_y + fields[2 + mode][j] * frame.rho_y;
+        }
+    }
+    return lab_fields;
 }
 
 std::array<NodeValues, 4> ConoscopeEvaluator::analyzed_node_amplitudes(const KernelScratch& scratch, int side, const std::array<NodeValues, 4>& fields,
@@ -163,9 +168,14 @@ bool ConoscopeEvaluator::colour_from_nodes(const KernelScratch& scratch, const s
                                            const std::array<NodeValues, 2>& side_phase, PairColour& colour) const {
     if (!node_colour_) return false;
     for (int side = 0; side < 2; ++side) {
-        int pairs = 1;
-        const std::array<NodeValues, 4> amplitudes = analyzed_node_amplitudes(scratch, side, side_fields[side], pairs);
-        const std::optional<Eigen::Vector3d> xyz = node_colour_->xyz(*nodes_, amplitudes, pairs, side_phase[side], kProductTolerance);
+        std::optional<Eigen::Vector3d> xyz;
+        if (plate_frame_) {
+            xyz = node_colour_->plate_xyz(*nodes_, plate_terms(*plate_frame_, lab_node_fields(scratch, side, side_fields[side]), side_phase[side]));
+        } else {
+            int pairs = 1;
+            const std::array<NodeValues, 4> amplitudes = analyzed_node_amplitudes(scratch, side, side_fields[side], pairs);
+            xyz = node_colour_->xyz(*nodes_, amplitudes, pairs, side_phase[side], kProductTolerance);
+        }
         if (!xyz) return false;
         colour.xyz[static_cast<std::size_t>(side)] = *xyz;
     }
@@ -177,7 +187,13 @@ bool ConoscopeEvaluator::active_colour_from_nodes(const std::array<ActiveNodeFie
                                                   PairColour& colour) const {
     if (!node_colour_) return false;
     for (std::size_t side = 0; side < 2; ++side) {
-        const std::optional<Eigen::Vector3d> xyz = node_colour_->active_xyz(*nodes_, side_active[side], side_phase[side]);
+        std::optional<Eigen::Vector3d> xyz;
+        if (plate_frame_) {
+            const std::optional<PlateNodeTerms> terms = active_plate_terms(*plate_frame_, side_active[side], side_phase[side]);
+            if (terms) xyz = node_colour_->plate_xyz(*nodes_, *terms);
+        } else {
+            xyz = node_colour_->active_xyz(*nodes_, side_active[side], side_phase[side]);
+        }
         if (!xyz) return false;
         colour.xyz[side] = *xyz;
     }

@@ -21,46 +21,76 @@ bool narrow_range(const NodeValues& angle) {
     const auto [least, most] = std::minmax_element(angle.begin(), angle.end());
     return *most - *least <= kSmoothFringePhaseRange_rad;
 }
-// An optically active crystal's terms (active_xyz): 2Ω within kPhaseTolerance_rad, as δ elsewhere (spectral_nodes.hpp),
-// and each of S, X, Y within 1e-4 of the transmission. Below kLeastRotation_rad of Ω at a node (no coupling on an optic
-// axis) the terms' 1/Ω is left to the spectrum.
+// An optically active crystal's terms (active_xyz) and a plate's (plate_xyz): θ within kPhaseTolerance_rad, as δ elsewhere
+// (spectral_nodes.hpp), and each term within 1e-4 of the transmission.
 constexpr double kTermTolerance = 1e-4;
-constexpr double kLeastRotation_rad = 1e-6;
 
 }  // namespace
 
-NodeColour::NodeColour(const SpectralNodes& nodes, const std::vector<Eigen::Vector3d>& weights) {
-    if (weights.size() != nodes.grid_size()) throw std::invalid_argument("the colour weights and the spectral nodes use different grids");
+NodeColour::Forms NodeColour::forms_of(const SpectralNodes& nodes, const std::array<std::vector<double>, 3>& channel_weights) {
     const double* basis = nodes.basis();
-    const std::size_t stride = nodes.padded_grid_size();
+    const std::size_t stride = nodes.padded_grid_size(), count = nodes.grid_size();
+    Forms forms;
     for (std::size_t c = 0; c < 3; ++c) {
-        channel_weights_[c].resize(weights.size());
-        for (std::size_t w = 0; w < weights.size(); ++w) channel_weights_[c][w] = weights[w][static_cast<Eigen::Index>(c)];
+        const std::vector<double>& weight = channel_weights[c];
         for (std::size_t j = 0; j < kSpectralNodes; ++j) {
-            for (std::size_t w = 0; w < weights.size(); ++w) linear_form_[c][j] += channel_weights_[c][w] * basis[j * stride + w];
+            for (std::size_t w = 0; w < count; ++w) forms.linear[c][j] += weight[w] * basis[j * stride + w];
         }
         for (std::size_t i = 0; i < kSpectralNodes; ++i) {
             for (std::size_t j = 0; j < kSpectralNodes; ++j) {
                 double sum = 0.0;
-                for (std::size_t w = 0; w < weights.size(); ++w) sum += channel_weights_[c][w] * basis[i * stride + w] * basis[j * stride + w];
-                form_[j * kFormRows + c * kSpectralNodes + i] = sum;
+                for (std::size_t w = 0; w < count; ++w) sum += weight[w] * basis[i * stride + w] * basis[j * stride + w];
+                forms.quadratic[j * kFormRows + c * kSpectralNodes + i] = sum;
             }
         }
     }
+    return forms;
 }
 
-Eigen::Vector3d NodeColour::weighted_product(const NodeValues& left, const NodeValues& right) const {
+NodeColour::NodeColour(const SpectralNodes& nodes, const std::vector<Eigen::Vector3d>& weights, const std::vector<double>& plate_phase_rad) {
+    if (weights.size() != nodes.grid_size()) throw std::invalid_argument("the colour weights and the spectral nodes use different grids");
+    for (std::size_t c = 0; c < 3; ++c) {
+        channel_weights_[c].resize(weights.size());
+        for (std::size_t w = 0; w < weights.size(); ++w) channel_weights_[c][w] = weights[w][static_cast<Eigen::Index>(c)];
+    }
+    plain_ = forms_of(nodes, channel_weights_);
+    if (plate_phase_rad.empty()) return;
+    if (plate_phase_rad.size() != weights.size()) throw std::invalid_argument("the plate's phase and the colour weights use different grids");
+    std::array<std::vector<double>, 3> cosine_weights = channel_weights_, sine_weights = channel_weights_;
+    for (const double phase : plate_phase_rad) {
+        plate_cosine_values_.push_back(std::cos(phase));
+        plate_sine_values_.push_back(std::sin(phase));
+    }
+    for (std::size_t c = 0; c < 3; ++c) {
+        for (std::size_t w = 0; w < weights.size(); ++w) {
+            cosine_weights[c][w] *= plate_cosine_values_[w];
+            sine_weights[c][w] *= plate_sine_values_[w];
+        }
+    }
+    plate_cosine_ = forms_of(nodes, cosine_weights);
+    plate_sine_ = forms_of(nodes, sine_weights);
+}
+
+Eigen::Vector3d NodeColour::weighted_product(const Forms& forms, const NodeValues& left, const NodeValues& right) {
     // The three channels' M_c·right at once, then each dotted with `left`.
     std::array<double, kFormRows> form_times_right;
 #pragma omp simd
     for (std::size_t row = 0; row < kFormRows; ++row) {
         double value = 0.0;
-        for (std::size_t j = 0; j < kSpectralNodes; ++j) value += form_[j * kFormRows + row] * right[j];
+        for (std::size_t j = 0; j < kSpectralNodes; ++j) value += forms.quadratic[j * kFormRows + row] * right[j];
         form_times_right[row] = value;
     }
     Eigen::Vector3d result = Eigen::Vector3d::Zero();
     for (std::size_t c = 0; c < 3; ++c) {
         for (std::size_t i = 0; i < kSpectralNodes; ++i) result[static_cast<Eigen::Index>(c)] += form_times_right[c * kSpectralNodes + i] * left[i];
+    }
+    return result;
+}
+
+Eigen::Vector3d NodeColour::weighted_sum(const Forms& forms, const NodeValues& values) {
+    Eigen::Vector3d result = Eigen::Vector3d::Zero();
+    for (std::size_t c = 0; c < 3; ++c) {
+        for (std::size_t j = 0; j < kSpectralNodes; ++j) result[static_cast<Eigen::Index>(c)] += forms.linear[c][j] * values[j];
     }
     return result;
 }
@@ -79,47 +109,63 @@ std::optional<Eigen::Vector3d> NodeColour::xyz(const SpectralNodes& nodes, const
         const NodeValues &c0 = amplitudes[2 * static_cast<std::size_t>(k)], &c1 = amplitudes[2 * static_cast<std::size_t>(k) + 1];
         NodeValues sum;
         for (std::size_t j = 0; j < kSpectralNodes; ++j) sum[j] = c0[j] + c1[j];
-        smooth += weighted_product(sum, sum);
+        smooth += weighted_product(plain_, sum, sum);
     }
     // Where δ changes little over the spectrum (a thin slab, the centre of a figure), sin²(δ/2) is as smooth as the
     // fields and the fringe term is a form in node values too.
     if (narrow_range(phase_difference)) {
         NodeValues fringe{};
         for (std::size_t j = 0; j < kSpectralNodes; ++j) fringe[j] = sin_squared(0.5 * phase_difference[j]);
-        if (nodes.tail(fringe) <= kSmoothFringeTolerance) return smooth - 4.0 * weighted_product(product, fringe);
+        if (nodes.tail(fringe) <= kSmoothFringeTolerance) return smooth - 4.0 * weighted_product(plain_, product, fringe);
     }
     NodeValues half_phase;
     for (std::size_t j = 0; j < kSpectralNodes; ++j) half_phase[j] = 0.5 * phase_difference[j];
-    return smooth - 4.0 * oscillating_sum<false>(nodes, half_phase, product, product);
+    return smooth - 4.0 * oscillating_sum<Oscillation::fringe>(nodes, half_phase, {&product});
 }
 
-template <bool Active>
-Eigen::Vector3d NodeColour::oscillating_sum(const SpectralNodes& nodes, const NodeValues& angle, const NodeValues& cosine_part,
-                                            const NodeValues& sine_part) const {
+template <NodeColour::Oscillation Kind>
+Eigen::Vector3d NodeColour::oscillating_sum(const SpectralNodes& nodes, const NodeValues& angle, const std::array<const NodeValues*, 6>& parts) const {
     // In vector lanes over the wavelengths, in chunks: first the interpolation, then the sine, two loops whose
     // iterations are short enough to overlap in the processor.
+    constexpr int kParts = Kind == Oscillation::fringe ? 1 : Kind == Oscillation::rotation ? 2 : Kind == Oscillation::plate_inactive ? 3 : 6;
     const double* basis = nodes.basis();
     const std::size_t stride = nodes.padded_grid_size(), count = nodes.grid_size();
+    const NodeValues &p0 = *parts[0], &p1 = kParts > 1 ? *parts[1] : p0, &p2 = kParts > 2 ? *parts[2] : p0;
+    const NodeValues &p3 = kParts > 3 ? *parts[3] : p0, &p4 = kParts > 3 ? *parts[4] : p0, &p5 = kParts > 3 ? *parts[5] : p0;
     double x = 0.0, y = 0.0, z = 0.0;
     for (std::size_t begin = 0; begin < count; begin += kChunk) {
         const std::size_t length = std::min(kChunk, count - begin);
-        std::array<double, kChunk> theta, c, s;
+        std::array<double, kChunk> theta, v0, v1, v2, v3, v4, v5;
 #pragma omp simd
         for (std::size_t i = 0; i < length; ++i) {
             theta[i] = interpolate_at(basis, stride, begin + i, angle);
-            c[i] = interpolate_at(basis, stride, begin + i, cosine_part);
-            if constexpr (Active) s[i] = interpolate_at(basis, stride, begin + i, sine_part);
+            v0[i] = interpolate_at(basis, stride, begin + i, p0);
+            if constexpr (kParts > 1) v1[i] = interpolate_at(basis, stride, begin + i, p1);
+            if constexpr (kParts > 2) v2[i] = interpolate_at(basis, stride, begin + i, p2);
+            if constexpr (kParts > 3) {
+                v3[i] = interpolate_at(basis, stride, begin + i, p3);
+                v4[i] = interpolate_at(basis, stride, begin + i, p4);
+                v5[i] = interpolate_at(basis, stride, begin + i, p5);
+            }
         }
         const double *w_x = channel_weights_[0].data() + begin, *w_y = channel_weights_[1].data() + begin;
         const double* w_z = channel_weights_[2].data() + begin;
+        const double *plate_cosine = plate_cosine_values_.data() + begin, *plate_sine = plate_sine_values_.data() + begin;
 #pragma omp simd reduction(+ : x, y, z)
         for (std::size_t i = 0; i < length; ++i) {
             double term = 0.0;
-            if constexpr (Active) {
-                const SineCosine both = sine_cosine(theta[i]);
-                term = c[i] * both.cosine + s[i] * both.sine;
+            if constexpr (Kind == Oscillation::fringe) {
+                term = v0[i] * sin_squared(theta[i]);
             } else {
-                term = c[i] * sin_squared(theta[i]);
+                const SineCosine both = sine_cosine(theta[i]);
+                if constexpr (Kind == Oscillation::rotation) {
+                    term = v0[i] * both.cosine + v1[i] * both.sine;
+                } else if constexpr (Kind == Oscillation::plate_inactive) {  // parts X, U_r, V_i
+                    term = (v0[i] + plate_cosine[i] * v1[i]) * both.cosine - plate_sine[i] * v2[i] * both.sine;
+                } else {  // parts X, Y, U_r, V_r, U_i, V_i
+                    term = (v0[i] + plate_cosine[i] * v2[i] - plate_sine[i] * v4[i]) * both.cosine +
+                           (v1[i] + plate_cosine[i] * v3[i] - plate_sine[i] * v5[i]) * both.sine;
+                }
             }
             x += w_x[i] * term;
             y += w_y[i] * term;
@@ -129,8 +175,7 @@ Eigen::Vector3d NodeColour::oscillating_sum(const SpectralNodes& nodes, const No
     return {x, y, z};
 }
 
-std::optional<Eigen::Vector3d> NodeColour::smooth_rotation(const SpectralNodes& nodes, const NodeValues& angle, const NodeValues& cosine_part,
-                                                           const NodeValues& sine_part) const {
+std::optional<std::array<NodeValues, 2>> NodeColour::smooth_cosine_sine(const SpectralNodes& nodes, const NodeValues& angle) {
     if (!narrow_range(angle)) return std::nullopt;
     NodeValues cosine, sine;
     for (std::size_t j = 0; j < kSpectralNodes; ++j) {
@@ -139,7 +184,14 @@ std::optional<Eigen::Vector3d> NodeColour::smooth_rotation(const SpectralNodes& 
         sine[j] = both.sine;
     }
     if (!(nodes.tail(cosine) <= kSmoothFringeTolerance && nodes.tail(sine) <= kSmoothFringeTolerance)) return std::nullopt;
-    return weighted_product(cosine_part, cosine) + weighted_product(sine_part, sine);
+    return std::array<NodeValues, 2>{cosine, sine};
+}
+
+std::optional<Eigen::Vector3d> NodeColour::smooth_rotation(const SpectralNodes& nodes, const NodeValues& angle, const NodeValues& cosine_part,
+                                                           const NodeValues& sine_part) const {
+    const std::optional<std::array<NodeValues, 2>> cosine_sine = smooth_cosine_sine(nodes, angle);
+    if (!cosine_sine) return std::nullopt;
+    return weighted_product(plain_, cosine_part, (*cosine_sine)[0]) + weighted_product(plain_, sine_part, (*cosine_sine)[1]);
 }
 
 std::optional<Eigen::Vector3d> NodeColour::active_xyz(const SpectralNodes& nodes, const ActiveNodeFields& fields,
@@ -168,11 +220,45 @@ std::optional<Eigen::Vector3d> NodeColour::active_xyz(const SpectralNodes& nodes
         if (!(nodes.tail(*part) <= kTermTolerance)) return std::nullopt;
     }
     const std::optional<Eigen::Vector3d> smooth_in_wavelength = smooth_rotation(nodes, two_omega, cosine_part, sine_part);
-    Eigen::Vector3d result = smooth_in_wavelength ? *smooth_in_wavelength : oscillating_sum<true>(nodes, two_omega, cosine_part, sine_part);
-    for (std::size_t c = 0; c < 3; ++c) {
-        for (std::size_t j = 0; j < kSpectralNodes; ++j) result[static_cast<Eigen::Index>(c)] += linear_form_[c][j] * smooth[j];
+    const Eigen::Vector3d oscillating =
+        smooth_in_wavelength ? *smooth_in_wavelength : oscillating_sum<Oscillation::rotation>(nodes, two_omega, {&cosine_part, &sine_part});
+    return oscillating + weighted_sum(plain_, smooth);
+}
+
+std::optional<Eigen::Vector3d> NodeColour::plate_xyz(const SpectralNodes& nodes, const PlateNodeTerms& terms) const {
+    if (plate_cosine_values_.empty()) return std::nullopt;
+    if (!(nodes.tail(terms.angle) <= kPhaseTolerance_rad)) return std::nullopt;
+    // The terms that are not zero (PlateNodeTerms); U_i = −T_i.
+    const NodeValues* sine_term = terms.active ? &terms.sine : nullptr;
+    const bool cross = terms.cross, active_cross = terms.active && terms.cross;
+    for (const NodeValues* term : {&terms.smooth, &terms.cosine, sine_term, cross ? &terms.in_phase : nullptr, cross ? &terms.in_phase_cosine : nullptr,
+                                   active_cross ? &terms.in_phase_sine : nullptr, active_cross ? &terms.quadrature : nullptr,
+                                   cross ? &terms.quadrature_sine : nullptr}) {
+        if (term != nullptr && !(nodes.tail(*term) <= kTermTolerance)) return std::nullopt;
     }
-    return result;
+    // Where θ changes little over the spectrum every term is smooth, cos θ and sin θ included: three linear forms in
+    // node values, one per spectral weight (W, W·cos Γ, W·sin Γ).
+    if (const std::optional<std::array<NodeValues, 2>> cosine_sine = smooth_cosine_sine(nodes, terms.angle)) {
+        const auto& [cosine, sine] = *cosine_sine;
+        NodeValues plain, in_phase, quadrature;
+        for (std::size_t j = 0; j < kSpectralNodes; ++j) {
+            plain[j] = terms.smooth[j] + terms.cosine[j] * cosine[j] + terms.sine[j] * sine[j];
+            in_phase[j] = terms.in_phase[j] + terms.in_phase_cosine[j] * cosine[j] + terms.in_phase_sine[j] * sine[j];
+            quadrature[j] = terms.quadrature[j] + terms.quadrature_cosine[j] * cosine[j] + terms.quadrature_sine[j] * sine[j];
+        }
+        if (nodes.tail(plain) <= kTermTolerance && nodes.tail(in_phase) <= kTermTolerance && nodes.tail(quadrature) <= kTermTolerance) {
+            return weighted_sum(plain_, plain) + weighted_sum(plate_cosine_, in_phase) - weighted_sum(plate_sine_, quadrature);
+        }
+    }
+    Eigen::Vector3d result = weighted_sum(plain_, terms.smooth);
+    if (!terms.cross) return result + oscillating_sum<Oscillation::rotation>(nodes, terms.angle, {&terms.cosine, &terms.sine});
+    result += weighted_sum(plate_cosine_, terms.in_phase) - weighted_sum(plate_sine_, terms.quadrature);
+    if (!terms.active) {
+        return result + oscillating_sum<Oscillation::plate_inactive>(nodes, terms.angle, {&terms.cosine, &terms.in_phase_cosine, &terms.quadrature_sine});
+    }
+    return result + oscillating_sum<Oscillation::plate_active>(nodes, terms.angle,
+                                                              {&terms.cosine, &terms.sine, &terms.in_phase_cosine, &terms.in_phase_sine,
+                                                               &terms.quadrature_cosine, &terms.quadrature_sine});
 }
 
 }  // namespace petroscope::detail

@@ -15,11 +15,29 @@
 
 namespace petroscope::detail {
 
+/// Below this Ω at a node (no coupling on an optic axis) an optically active crystal's terms, which hold 1/Ω, are
+/// left to the spectrum.
+inline constexpr double kLeastRotation_rad = 1e-6;
+
+/// A point's transmission behind an accessory plate that is diag(μ₁, μ₂) on its two axes (plate_terms.hpp), with
+/// e^{iΓ} = μ̄₁μ₂/|μ₁μ₂| and θ = δ (inactive) or 2Ω (optically active):
+/// I = S + X cos θ + Y sin θ + cos Γ·(T_r + U_r cos θ + V_r sin θ) − sin Γ·(T_i + U_i cos θ + V_i sin θ), where θ
+/// and the terms are smooth over the spectrum and Γ, known at every grid wavelength, need not be.
+struct PlateNodeTerms {
+    bool active = false;  // unless active, Y, V_r, T_i and U_i are zero
+    bool cross = false;   // unless cross (an analyzer oblique to the plate's axes), every T, U and V is zero
+    NodeValues angle{};   // θ
+    NodeValues smooth{}, cosine{}, sine{};                       // S, X, Y
+    NodeValues in_phase{}, in_phase_cosine{}, in_phase_sine{};  // T_r, U_r, V_r
+    NodeValues quadrature{}, quadrature_cosine{}, quadrature_sine{};  // T_i, U_i, V_i
+};
+
 class NodeColour {
 public:
     /// `weights`: the colour weights W(w) = (x̄, ȳ, z̄)·source of the grid's wavelengths (SpectralIntegrator::weights),
-    /// one per grid wavelength of `nodes`.
-    NodeColour(const SpectralNodes& nodes, const std::vector<Eigen::Vector3d>& weights);
+    /// one per grid wavelength of `nodes`. `plate_phase_rad`: behind an accessory plate, its Γ(w) at every grid
+    /// wavelength (for plate_xyz); empty without one.
+    NodeColour(const SpectralNodes& nodes, const std::vector<Eigen::Vector3d>& weights, const std::vector<double>& plate_phase_rad = {});
 
     /// Σ_w W(w)·I(w) with I = Σ_k |c₀ₖe^{iφ₀} + c₁ₖe^{iφ₁}|² over `pairs` amplitude pairs (amplitudes[2k],
     /// amplitudes[2k + 1], as for interpolated_transmission) and δ = φ₀ − φ₁, all interpolated from the nodes of
@@ -34,25 +52,41 @@ public:
     /// or Ω vanishes at a node.
     std::optional<Eigen::Vector3d> active_xyz(const SpectralNodes& nodes, const ActiveNodeFields& fields, const NodeValues& phase_difference) const;
 
+    /// The colour behind a plate from its terms (PlateNodeTerms); none where a term or θ is too rough to interpolate
+    /// or this object was made without the plate's phase.
+    std::optional<Eigen::Vector3d> plate_xyz(const SpectralNodes& nodes, const PlateNodeTerms& terms) const;
+
 private:
-    /// Σ_w W(w)·f(w)·g(w) for the interpolants f, g of the node values `left`, `right`: leftᵀ·M_c·right per channel.
-    Eigen::Vector3d weighted_product(const NodeValues& left, const NodeValues& right) const;
-    /// Σ_w W(w)·(c(w)·cos θ(w) + s(w)·sin θ(w)) as forms in node values where θ changes so little over the spectrum
-    /// that cos θ and sin θ are smooth enough; none elsewhere.
+    static constexpr std::size_t kFormRows = 3 * kSpectralNodes;
+    /// The forms of one spectral weight V(w) (W, W·cos Γ or W·sin Γ).
+    struct Forms {
+        // The three channels' matrices M_c = Σ_w V_c(w)·ℓᵢ(w)·ℓⱼ(w) (ℓ the nodes' basis), column j after column j − 1,
+        // each column the channels' rows one after the other: element [j·kFormRows + c·8 + i] is M_c(i, j).
+        std::array<double, kFormRows * kSpectralNodes> quadratic{};
+        std::array<NodeValues, 3> linear{};  // per channel: Σ_w V_c(w)·ℓⱼ(w)
+    };
+    static Forms forms_of(const SpectralNodes& nodes, const std::array<std::vector<double>, 3>& channel_weights);
+    /// Σ_w V(w)·f(w)·g(w) for the interpolants f, g of the node values `left`, `right`: leftᵀ·M_c·right per channel.
+    static Eigen::Vector3d weighted_product(const Forms& forms, const NodeValues& left, const NodeValues& right);
+    /// Σ_w V(w)·f(w) for the interpolant f of `values`.
+    static Eigen::Vector3d weighted_sum(const Forms& forms, const NodeValues& values);
+    /// cos θ and sin θ at the nodes where θ changes so little over the spectrum that they are as smooth as the fields;
+    /// none elsewhere.
+    static std::optional<std::array<NodeValues, 2>> smooth_cosine_sine(const SpectralNodes& nodes, const NodeValues& angle);
+    /// Σ_w W(w)·(c(w)·cos θ(w) + s(w)·sin θ(w)) as forms in node values where smooth_cosine_sine serves; none elsewhere.
     std::optional<Eigen::Vector3d> smooth_rotation(const SpectralNodes& nodes, const NodeValues& angle, const NodeValues& cosine_part,
                                                    const NodeValues& sine_part) const;
-    /// Σ_w W(w)·c(w)·sin²θ(w) (not Active; `sine_part` unused) or Σ_w W(w)·(c(w)·cos θ(w) + s(w)·sin θ(w)) (Active),
-    /// wavelength by wavelength, from the node values of θ, c and s.
-    template <bool Active>
-    Eigen::Vector3d oscillating_sum(const SpectralNodes& nodes, const NodeValues& angle, const NodeValues& cosine_part,
-                                    const NodeValues& sine_part) const;
+    /// Wavelength by wavelength, from node values: Σ_w W(w)·c(w)·sin²θ(w) (fringe), Σ_w W(w)·(c(w)·cos θ(w) +
+    /// s(w)·sin θ(w)) (rotation), or the oscillating part of plate_xyz (plate_inactive, plate_active: `parts` are
+    /// X, U_r, V_i, or X, Y, U_r, V_r, U_i, V_i).
+    enum class Oscillation { fringe, rotation, plate_inactive, plate_active };
+    template <Oscillation Kind>
+    Eigen::Vector3d oscillating_sum(const SpectralNodes& nodes, const NodeValues& angle, const std::array<const NodeValues*, 6>& parts) const;
 
-    static constexpr std::size_t kFormRows = 3 * kSpectralNodes;
-    // The three channels' matrices M_c = Σ_w W_c(w)·ℓᵢ(w)·ℓⱼ(w) (ℓ the nodes' basis), column j after column j − 1,
-    // each column the channels' rows one after the other: element [j·kFormRows + c·8 + i] is M_c(i, j).
-    std::array<double, kFormRows * kSpectralNodes> form_{};
-    std::array<NodeValues, 3> linear_form_{};             // per channel: Σ_w W(w)·ℓⱼ(w)
+    Forms plain_;                                         // V = W
+    Forms plate_cosine_, plate_sine_;                     // V = W·cos Γ and W·sin Γ (behind a plate)
     std::array<std::vector<double>, 3> channel_weights_;  // per channel: W(w)
+    std::vector<double> plate_cosine_values_, plate_sine_values_;  // cos Γ(w), sin Γ(w); empty without a plate
 };
 
 }  // namespace petroscope::detail

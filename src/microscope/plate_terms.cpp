@@ -1,0 +1,115 @@
+#include "plate_terms.hpp"
+
+#include "petroscope/core/angles.hpp"
+
+#include <cmath>
+#include <complex>
+
+namespace petroscope::detail {
+namespace {
+
+// J on the plate's axes (columns of `axes`): (μ₁, μ₂), or none where its off-diagonal exceeds 1e-12 of its diagonal.
+std::optional<Eigen::Vector2cd> plate_eigenvalues(const AccessoryPlate& plate, const Eigen::Matrix2d& axes, double wavelength_nm) {
+    const Eigen::Matrix2cd on_axes = axes.transpose() * plate_jones_lab(plate, wavelength_nm, false) * axes;
+    if (!(std::abs(on_axes(0, 1)) + std::abs(on_axes(1, 0)) <= 1e-12 * (std::abs(on_axes(0, 0)) + std::abs(on_axes(1, 1))))) return std::nullopt;
+    return Eigen::Vector2cd(on_axes(0, 0), on_axes(1, 1));
+}
+
+// One component of an active crystal's field leaving the slab, R + iI with R = cos Ω·A + (sin Ω/Ω)·B and
+// I = (sin Ω/Ω)·h·C (spectral_nodes.hpp, interpolated_active_transmission).
+struct ActiveComponent {
+    double a, b, c;
+};
+
+}  // namespace
+
+std::optional<PlateFrame> plate_frame(const AccessoryPlate& plate, const std::vector<double>& grid_nm, const SpectralNodes& nodes,
+                                      const Eigen::Vector2d& analyzer, bool analyzer_in) {
+    PlateFrame frame;
+    frame.slow = unit_at(plate.slow_deg);
+    frame.fast = Eigen::Vector2d(-frame.slow.y(), frame.slow.x());
+    Eigen::Matrix2d axes;
+    axes << frame.slow, frame.fast;
+    const Eigen::Vector2d on_axes = axes.transpose() * analyzer;
+    const Eigen::Matrix2d g = analyzer_in ? Eigen::Matrix2d(on_axes * on_axes.transpose()) : Eigen::Matrix2d::Identity();
+    frame.cross = std::abs(g(0, 1)) > 1e-15;
+    for (std::size_t j = 0; j < kSpectralNodes; ++j) {
+        const std::optional<Eigen::Vector2cd> mu = plate_eigenvalues(plate, axes, nodes.wavelengths_nm()[j]);
+        if (!mu) return std::nullopt;
+        frame.slow_weight[j] = std::norm((*mu)[0]) * g(0, 0);
+        frame.fast_weight[j] = std::norm((*mu)[1]) * g(1, 1);
+        frame.cross_weight[j] = 2.0 * std::abs((*mu)[0]) * std::abs((*mu)[1]) * g(0, 1);
+    }
+    for (const double wavelength_nm : grid_nm) {
+        const std::optional<Eigen::Vector2cd> mu = plate_eigenvalues(plate, axes, wavelength_nm);
+        if (!mu) return std::nullopt;
+        frame.phase_rad.push_back(std::arg(std::conj((*mu)[0]) * (*mu)[1]));
+    }
+    return frame;
+}
+
+PlateNodeTerms plate_terms(const PlateFrame& plate, const std::array<NodeValues, 4>& lab_fields, const NodeValues& phase_difference) {
+    // On the plate's axes the field is ρ̃ = ρ₀e^{iδ} + ρ₁ (slow axis) and π̃ = π₀e^{iδ} + π₁ (fast axis), up to a common
+    // phase. EᴴHE = p₁|ρ̃|² + p₂|π̃|² + g·Re(e^{iΓ}·ρ̃*π̃) (PlateFrame's weights p₁, p₂, g) with |ρ̃|² = ρ₀² + ρ₁² + 2ρ₀ρ₁cos δ
+    // and Re(e^{iΓ}·ρ̃*π̃) = cos Γ·(ρ₀π₀ + ρ₁π₁ + (ρ₀π₁ + ρ₁π₀)·cos δ) − sin Γ·(ρ₁π₀ − ρ₀π₁)·sin δ.
+    PlateNodeTerms terms;
+    terms.cross = plate.cross;
+    terms.angle = phase_difference;
+    for (std::size_t j = 0; j < kSpectralNodes; ++j) {
+        const double rho_0 = plate.slow.x() * lab_fields[0][j] + plate.slow.y() * lab_fields[2][j];
+        const double rho_1 = plate.slow.x() * lab_fields[1][j] + plate.slow.y() * lab_fields[3][j];
+        const double pi_0 = plate.fast.x() * lab_fields[0][j] + plate.fast.y() * lab_fields[2][j];
+        const double pi_1 = plate.fast.x() * lab_fields[1][j] + plate.fast.y() * lab_fields[3][j];
+        const double p1 = plate.slow_weight[j], p2 = plate.fast_weight[j], g = plate.cross_weight[j];
+        terms.smooth[j] = p1 * (rho_0 * rho_0 + rho_1 * rho_1) + p2 * (pi_0 * pi_0 + pi_1 * pi_1);
+        terms.cosine[j] = 2.0 * (p1 * rho_0 * rho_1 + p2 * pi_0 * pi_1);
+        terms.in_phase[j] = g * (rho_0 * pi_0 + rho_1 * pi_1);
+        terms.in_phase_cosine[j] = g * (rho_0 * pi_1 + rho_1 * pi_0);
+        terms.quadrature_sine[j] = g * (rho_1 * pi_0 - rho_0 * pi_1);
+    }
+    return terms;
+}
+
+std::optional<PlateNodeTerms> active_plate_terms(const PlateFrame& plate, const ActiveNodeFields& fields, const NodeValues& phase_difference) {
+    // With h = δ/2, Ω = √(h² + b₀b₁), cos²Ω = (1 + cos 2Ω)/2, cos Ω·sin Ω/Ω = sin 2Ω/(2Ω) and sin²Ω/Ω² = (1 − cos 2Ω)/(2Ω²),
+    // each |R + iI|² is S + X cos 2Ω + Y sin 2Ω (NodeColour::active_xyz), and ρ̃*π̃ = (R_ρR_π + I_ρI_π) + i(R_ρI_π − I_ρR_π) is
+    // (T_r + U_r cos 2Ω + V_r sin 2Ω) + i(T_i + U_i cos 2Ω + V_i sin 2Ω), so that g·Re(e^{iΓ}·ρ̃*π̃) gives the cos Γ and
+    // sin Γ terms of PlateNodeTerms.
+    PlateNodeTerms terms;
+    terms.active = true;
+    terms.cross = plate.cross;
+    const auto& [x, y] = fields.component;
+    for (std::size_t j = 0; j < kSpectralNodes; ++j) {
+        const double h = 0.5 * phase_difference[j];
+        const double omega = std::sqrt(std::max(h * h + fields.coupling_product[j], 0.0));
+        if (!(omega > kLeastRotation_rad)) return std::nullopt;
+        terms.angle[j] = 2.0 * omega;
+        // A = F₀ + F₁, B = G₁ − G₀, C = F₀ − F₁ on the lab's x and y, then on the plate's axes.
+        const ActiveComponent on_x{x[0][j] + x[1][j], x[3][j] - x[2][j], x[0][j] - x[1][j]};
+        const ActiveComponent on_y{y[0][j] + y[1][j], y[3][j] - y[2][j], y[0][j] - y[1][j]};
+        const auto project = [&](const Eigen::Vector2d& axis) {
+            return ActiveComponent{axis.x() * on_x.a + axis.y() * on_y.a, axis.x() * on_x.b + axis.y() * on_y.b, axis.x() * on_x.c + axis.y() * on_y.c};
+        };
+        const ActiveComponent rho = project(plate.slow), pi = project(plate.fast);
+        const double inverse_omega = 1.0 / omega, inverse_omega_squared = inverse_omega * inverse_omega;
+        const auto add_norm = [&](const ActiveComponent& u, double weight) {
+            const double d = (u.b * u.b + h * h * u.c * u.c) * inverse_omega_squared;
+            terms.smooth[j] += weight * 0.5 * (u.a * u.a + d);
+            terms.cosine[j] += weight * 0.5 * (u.a * u.a - d);
+            terms.sine[j] += weight * u.a * u.b * inverse_omega;
+        };
+        add_norm(rho, plate.slow_weight[j]);
+        add_norm(pi, plate.fast_weight[j]);
+        const double half_g = 0.5 * plate.cross_weight[j];
+        const double e = (rho.b * pi.b + h * h * rho.c * pi.c) * inverse_omega_squared;
+        terms.in_phase[j] = half_g * (rho.a * pi.a + e);
+        terms.in_phase_cosine[j] = half_g * (rho.a * pi.a - e);
+        terms.in_phase_sine[j] = half_g * (rho.a * pi.b + rho.b * pi.a) * inverse_omega;
+        terms.quadrature[j] = half_g * h * (rho.b * pi.c - rho.c * pi.b) * inverse_omega_squared;
+        terms.quadrature_cosine[j] = -terms.quadrature[j];
+        terms.quadrature_sine[j] = half_g * h * (rho.a * pi.c - rho.c * pi.a) * inverse_omega;
+    }
+    return terms;
+}
+
+}  // namespace petroscope::detail
