@@ -96,23 +96,33 @@ bool ConoscopeEvaluator::interpolated_pair(const KernelScratch& scratch, double*
             side_product[side][j] = scratch.coupling_product[side][j];
         }
         if (!(nodes_->tail(side_phase[side]) <= kPhaseTolerance_rad)) return false;
-        for (const NodeValues& field : side_fields[side]) {
-            if (!(nodes_->tail(field) <= kFieldTolerance)) return false;
-        }
-        if (!active) continue;
-        for (const NodeValues& field : side_coupled[side]) {
-            if (!(nodes_->tail(field) <= kFieldTolerance)) return false;
-        }
-        if (!(nodes_->tail(side_product[side]) <= coupling_product_tolerance(side_product[side]))) return false;
     }
+    // The interpolated spectrum, and the colour of an inactive crystal without a plate (quadratic forms in the fields),
+    // need the fields themselves smooth; the other colours from the nodes check the terms they interpolate.
+    const auto fields_smooth = [&] {
+        for (int side = 0; side < 2; ++side) {
+            for (const NodeValues& field : side_fields[side]) {
+                if (!(nodes_->tail(field) <= kFieldTolerance)) return false;
+            }
+            if (!active) continue;
+            for (const NodeValues& field : side_coupled[side]) {
+                if (!(nodes_->tail(field) <= kFieldTolerance)) return false;
+            }
+            if (!(nodes_->tail(side_product[side]) <= coupling_product_tolerance(side_product[side]))) return false;
+        }
+        return true;
+    };
     if (active) {
         std::array<ActiveNodeFields, 2> side_active;
         for (int side = 0; side < 2; ++side) side_active[side] = active_node_fields(scratch, side, side_fields[side], side_coupled[side], side_product[side]);
         if (colour != nullptr && active_colour_from_nodes(side_active, side_phase, *colour)) return true;
+        if (!fields_smooth()) return false;
         for (int side = 0; side < 2; ++side) active_interpolated_side(side_active[side], side_phase[side], side == 0 ? out_plus : out_minus);
         return true;
     }
-    if (colour != nullptr && colour_from_nodes(scratch, side_fields, side_phase, *colour)) return true;
+    if (colour != nullptr && plate_frame_ && colour_from_nodes(scratch, side_fields, side_phase, *colour)) return true;
+    if (!fields_smooth()) return false;
+    if (colour != nullptr && !plate_frame_ && colour_from_nodes(scratch, side_fields, side_phase, *colour)) return true;
     for (int side = 0; side < 2; ++side) {
         const std::array<NodeValues, 4>& fields = side_fields[side];
         double* out = side == 0 ? out_plus : out_minus;
@@ -170,7 +180,9 @@ bool ConoscopeEvaluator::colour_from_nodes(const KernelScratch& scratch, const s
     for (int side = 0; side < 2; ++side) {
         std::optional<Eigen::Vector3d> xyz;
         if (plate_frame_) {
-            xyz = node_colour_->plate_xyz(*nodes_, plate_terms(*plate_frame_, lab_node_fields(scratch, side, side_fields[side]), side_phase[side]));
+            PlateNodeTerms terms;
+            plate_terms(*plate_frame_, lab_node_fields(scratch, side, side_fields[side]), side_phase[side], terms);
+            xyz = node_colour_->plate_xyz(*nodes_, terms);
         } else {
             int pairs = 1;
             const std::array<NodeValues, 4> amplitudes = analyzed_node_amplitudes(scratch, side, side_fields[side], pairs);
@@ -189,8 +201,8 @@ bool ConoscopeEvaluator::active_colour_from_nodes(const std::array<ActiveNodeFie
     for (std::size_t side = 0; side < 2; ++side) {
         std::optional<Eigen::Vector3d> xyz;
         if (plate_frame_) {
-            const std::optional<PlateNodeTerms> terms = active_plate_terms(*plate_frame_, side_active[side], side_phase[side]);
-            if (terms) xyz = node_colour_->plate_xyz(*nodes_, *terms);
+            PlateNodeTerms terms;
+            if (active_plate_terms(*plate_frame_, side_active[side], side_phase[side], terms)) xyz = node_colour_->plate_xyz(*nodes_, terms);
         } else {
             xyz = node_colour_->active_xyz(*nodes_, side_active[side], side_phase[side]);
         }

@@ -88,11 +88,14 @@ Eigen::Vector3d NodeColour::weighted_product(const Forms& forms, const NodeValue
 }
 
 Eigen::Vector3d NodeColour::weighted_sum(const Forms& forms, const NodeValues& values) {
-    Eigen::Vector3d result = Eigen::Vector3d::Zero();
-    for (std::size_t c = 0; c < 3; ++c) {
-        for (std::size_t j = 0; j < kSpectralNodes; ++j) result[static_cast<Eigen::Index>(c)] += forms.linear[c][j] * values[j];
+    double x = 0.0, y = 0.0, z = 0.0;
+#pragma omp simd reduction(+ : x, y, z)
+    for (std::size_t j = 0; j < kSpectralNodes; ++j) {
+        x += forms.linear[0][j] * values[j];
+        y += forms.linear[1][j] * values[j];
+        z += forms.linear[2][j] * values[j];
     }
-    return result;
+    return {x, y, z};
 }
 
 std::optional<Eigen::Vector3d> NodeColour::xyz(const SpectralNodes& nodes, const std::array<NodeValues, 4>& amplitudes, int pairs,
@@ -252,11 +255,11 @@ std::optional<Eigen::Vector3d> NodeColour::plate_xyz(const SpectralNodes& nodes,
     }
     Eigen::Vector3d result = weighted_sum(plain_, terms.smooth);
     if (!terms.cross) return result + oscillating_sum<Oscillation::rotation>(nodes, terms.angle, {&terms.cosine, &terms.sine});
-    result += weighted_sum(plate_cosine_, terms.in_phase) - weighted_sum(plate_sine_, terms.quadrature);
+    result += weighted_sum(plate_cosine_, terms.in_phase);
     if (!terms.active) {
         return result + oscillating_sum<Oscillation::plate_inactive>(nodes, terms.angle, {&terms.cosine, &terms.in_phase_cosine, &terms.quadrature_sine});
     }
-    return result + oscillating_sum<Oscillation::plate_active>(nodes, terms.angle,
+    return result - weighted_sum(plate_sine_, terms.quadrature) + oscillating_sum<Oscillation::plate_active>(nodes, terms.angle,
                                                               {&terms.cosine, &terms.sine, &terms.in_phase_cosine, &terms.in_phase_sine,
                                                                &terms.quadrature_cosine, &terms.quadrature_sine});
 }

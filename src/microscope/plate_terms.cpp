@@ -2,8 +2,10 @@
 
 #include "petroscope/core/angles.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
+#include <limits>
 
 namespace petroscope::detail {
 namespace {
@@ -48,59 +50,61 @@ std::optional<PlateFrame> plate_frame(const AccessoryPlate& plate, const std::ve
     return frame;
 }
 
-PlateNodeTerms plate_terms(const PlateFrame& plate, const std::array<NodeValues, 4>& lab_fields, const NodeValues& phase_difference) {
+void plate_terms(const PlateFrame& plate, const std::array<NodeValues, 4>& lab_fields, const NodeValues& phase_difference, PlateNodeTerms& terms) {
     // On the plate's axes the field is ρ̃ = ρ₀e^{iδ} + ρ₁ (slow axis) and π̃ = π₀e^{iδ} + π₁ (fast axis), up to a common
     // phase. EᴴHE = p₁|ρ̃|² + p₂|π̃|² + g·Re(e^{iΓ}·ρ̃*π̃) (PlateFrame's weights p₁, p₂, g) with |ρ̃|² = ρ₀² + ρ₁² + 2ρ₀ρ₁cos δ
     // and Re(e^{iΓ}·ρ̃*π̃) = cos Γ·(ρ₀π₀ + ρ₁π₁ + (ρ₀π₁ + ρ₁π₀)·cos δ) − sin Γ·(ρ₁π₀ − ρ₀π₁)·sin δ.
-    PlateNodeTerms terms;
+    terms.active = false;
     terms.cross = plate.cross;
     terms.angle = phase_difference;
+    const Eigen::Vector2d &slow = plate.slow, &fast = plate.fast;
+#pragma omp simd
     for (std::size_t j = 0; j < kSpectralNodes; ++j) {
-        const double rho_0 = plate.slow.x() * lab_fields[0][j] + plate.slow.y() * lab_fields[2][j];
-        const double rho_1 = plate.slow.x() * lab_fields[1][j] + plate.slow.y() * lab_fields[3][j];
-        const double pi_0 = plate.fast.x() * lab_fields[0][j] + plate.fast.y() * lab_fields[2][j];
-        const double pi_1 = plate.fast.x() * lab_fields[1][j] + plate.fast.y() * lab_fields[3][j];
+        const double rho_0 = slow.x() * lab_fields[0][j] + slow.y() * lab_fields[2][j];
+        const double rho_1 = slow.x() * lab_fields[1][j] + slow.y() * lab_fields[3][j];
+        const double pi_0 = fast.x() * lab_fields[0][j] + fast.y() * lab_fields[2][j];
+        const double pi_1 = fast.x() * lab_fields[1][j] + fast.y() * lab_fields[3][j];
         const double p1 = plate.slow_weight[j], p2 = plate.fast_weight[j], g = plate.cross_weight[j];
         terms.smooth[j] = p1 * (rho_0 * rho_0 + rho_1 * rho_1) + p2 * (pi_0 * pi_0 + pi_1 * pi_1);
         terms.cosine[j] = 2.0 * (p1 * rho_0 * rho_1 + p2 * pi_0 * pi_1);
+        terms.sine[j] = 0.0;
         terms.in_phase[j] = g * (rho_0 * pi_0 + rho_1 * pi_1);
         terms.in_phase_cosine[j] = g * (rho_0 * pi_1 + rho_1 * pi_0);
+        terms.in_phase_sine[j] = 0.0;
+        terms.quadrature[j] = 0.0;
+        terms.quadrature_cosine[j] = 0.0;
         terms.quadrature_sine[j] = g * (rho_1 * pi_0 - rho_0 * pi_1);
     }
-    return terms;
 }
 
-std::optional<PlateNodeTerms> active_plate_terms(const PlateFrame& plate, const ActiveNodeFields& fields, const NodeValues& phase_difference) {
+bool active_plate_terms(const PlateFrame& plate, const ActiveNodeFields& fields, const NodeValues& phase_difference, PlateNodeTerms& terms) {
     // With h = δ/2, Ω = √(h² + b₀b₁), cos²Ω = (1 + cos 2Ω)/2, cos Ω·sin Ω/Ω = sin 2Ω/(2Ω) and sin²Ω/Ω² = (1 − cos 2Ω)/(2Ω²),
     // each |R + iI|² is S + X cos 2Ω + Y sin 2Ω (NodeColour::active_xyz), and ρ̃*π̃ = (R_ρR_π + I_ρI_π) + i(R_ρI_π − I_ρR_π) is
     // (T_r + U_r cos 2Ω + V_r sin 2Ω) + i(T_i + U_i cos 2Ω + V_i sin 2Ω), so that g·Re(e^{iΓ}·ρ̃*π̃) gives the cos Γ and
     // sin Γ terms of PlateNodeTerms.
-    PlateNodeTerms terms;
     terms.active = true;
     terms.cross = plate.cross;
     const auto& [x, y] = fields.component;
+    const Eigen::Vector2d &slow = plate.slow, &fast = plate.fast;
+    double least_omega = std::numeric_limits<double>::infinity();
+#pragma omp simd reduction(min : least_omega)
     for (std::size_t j = 0; j < kSpectralNodes; ++j) {
         const double h = 0.5 * phase_difference[j];
         const double omega = std::sqrt(std::max(h * h + fields.coupling_product[j], 0.0));
-        if (!(omega > kLeastRotation_rad)) return std::nullopt;
+        least_omega = std::min(least_omega, omega);
         terms.angle[j] = 2.0 * omega;
         // A = F₀ + F₁, B = G₁ − G₀, C = F₀ − F₁ on the lab's x and y, then on the plate's axes.
-        const ActiveComponent on_x{x[0][j] + x[1][j], x[3][j] - x[2][j], x[0][j] - x[1][j]};
-        const ActiveComponent on_y{y[0][j] + y[1][j], y[3][j] - y[2][j], y[0][j] - y[1][j]};
-        const auto project = [&](const Eigen::Vector2d& axis) {
-            return ActiveComponent{axis.x() * on_x.a + axis.y() * on_y.a, axis.x() * on_x.b + axis.y() * on_y.b, axis.x() * on_x.c + axis.y() * on_y.c};
-        };
-        const ActiveComponent rho = project(plate.slow), pi = project(plate.fast);
-        const double inverse_omega = 1.0 / omega, inverse_omega_squared = inverse_omega * inverse_omega;
-        const auto add_norm = [&](const ActiveComponent& u, double weight) {
-            const double d = (u.b * u.b + h * h * u.c * u.c) * inverse_omega_squared;
-            terms.smooth[j] += weight * 0.5 * (u.a * u.a + d);
-            terms.cosine[j] += weight * 0.5 * (u.a * u.a - d);
-            terms.sine[j] += weight * u.a * u.b * inverse_omega;
-        };
-        add_norm(rho, plate.slow_weight[j]);
-        add_norm(pi, plate.fast_weight[j]);
-        const double half_g = 0.5 * plate.cross_weight[j];
+        const double a_x = x[0][j] + x[1][j], b_x = x[3][j] - x[2][j], c_x = x[0][j] - x[1][j];
+        const double a_y = y[0][j] + y[1][j], b_y = y[3][j] - y[2][j], c_y = y[0][j] - y[1][j];
+        const ActiveComponent rho{slow.x() * a_x + slow.y() * a_y, slow.x() * b_x + slow.y() * b_y, slow.x() * c_x + slow.y() * c_y};
+        const ActiveComponent pi{fast.x() * a_x + fast.y() * a_y, fast.x() * b_x + fast.y() * b_y, fast.x() * c_x + fast.y() * c_y};
+        const double inverse_omega = 1.0 / std::max(omega, kLeastRotation_rad), inverse_omega_squared = inverse_omega * inverse_omega;
+        const double p1 = plate.slow_weight[j], p2 = plate.fast_weight[j], half_g = 0.5 * plate.cross_weight[j];
+        const double d_rho = (rho.b * rho.b + h * h * rho.c * rho.c) * inverse_omega_squared;
+        const double d_pi = (pi.b * pi.b + h * h * pi.c * pi.c) * inverse_omega_squared;
+        terms.smooth[j] = 0.5 * (p1 * (rho.a * rho.a + d_rho) + p2 * (pi.a * pi.a + d_pi));
+        terms.cosine[j] = 0.5 * (p1 * (rho.a * rho.a - d_rho) + p2 * (pi.a * pi.a - d_pi));
+        terms.sine[j] = (p1 * rho.a * rho.b + p2 * pi.a * pi.b) * inverse_omega;
         const double e = (rho.b * pi.b + h * h * rho.c * pi.c) * inverse_omega_squared;
         terms.in_phase[j] = half_g * (rho.a * pi.a + e);
         terms.in_phase_cosine[j] = half_g * (rho.a * pi.a - e);
@@ -109,7 +113,7 @@ std::optional<PlateNodeTerms> active_plate_terms(const PlateFrame& plate, const 
         terms.quadrature_cosine[j] = -terms.quadrature[j];
         terms.quadrature_sine[j] = half_g * h * (rho.a * pi.c - rho.c * pi.a) * inverse_omega;
     }
-    return terms;
+    return least_omega > kLeastRotation_rad;
 }
 
 }  // namespace petroscope::detail

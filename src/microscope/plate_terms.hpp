@@ -31,11 +31,11 @@ std::optional<PlateFrame> plate_frame(const AccessoryPlate& plate, const std::ve
                                       const Eigen::Vector2d& analyzer, bool analyzer_in);
 
 /// A crystal without optical activity: its node fields in the lab (x of the fast and slow mode, then y of the fast
-/// and slow mode; the fast mode leads by δ).
-PlateNodeTerms plate_terms(const PlateFrame& plate, const std::array<NodeValues, 4>& lab_fields, const NodeValues& phase_difference);
+/// and slow mode; the fast mode leads by δ). Writes every member of `terms`.
+void plate_terms(const PlateFrame& plate, const std::array<NodeValues, 4>& lab_fields, const NodeValues& phase_difference, PlateNodeTerms& terms);
 
-/// An optically active crystal: its node quantities on the lab's x and y (ActiveNodeFields, two components); none
-/// where Ω vanishes at a node.
-std::optional<PlateNodeTerms> active_plate_terms(const PlateFrame& plate, const ActiveNodeFields& fields, const NodeValues& phase_difference);
+/// An optically active crystal: its node quantities on the lab's x and y (ActiveNodeFields, two components). Writes
+/// every member of `terms`; false where Ω vanishes at a node (its terms are then of no use).
+bool active_plate_terms(const PlateFrame& plate, const ActiveNodeFields& fields, const NodeValues& phase_difference, PlateNodeTerms& terms);
 
 }  // namespace petroscope::detail
