@@ -3,6 +3,7 @@
 #include "petroscope/core/fast_math.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 
 namespace petroscope::detail {
@@ -153,7 +154,9 @@ Eigen::Vector3d NodeColour::oscillating_sum(const SpectralNodes& nodes, const No
         }
         const double *w_x = channel_weights_[0].data() + begin, *w_y = channel_weights_[1].data() + begin;
         const double* w_z = channel_weights_[2].data() + begin;
-        const double *plate_cosine = plate_cosine_values_.data() + begin, *plate_sine = plate_sine_values_.data() + begin;
+        const bool plate = Kind == Oscillation::plate_inactive || Kind == Oscillation::plate_active;
+        const double* plate_cosine = plate ? plate_cosine_values_.data() + begin : nullptr;
+        const double* plate_sine = plate ? plate_sine_values_.data() + begin : nullptr;
 #pragma omp simd reduction(+ : x, y, z)
         for (std::size_t i = 0; i < length; ++i) {
             double term = 0.0;
@@ -204,20 +207,25 @@ std::optional<Eigen::Vector3d> NodeColour::active_xyz(const SpectralNodes& nodes
     // which is S + X·cos 2Ω + Y·sin 2Ω with D = (B² + h²C²)/Ω², S = (A² + D)/2, X = (A² − D)/2, Y = AB/Ω; the
     // components' S, X, Y add.
     NodeValues smooth{}, cosine_part{}, sine_part{}, two_omega{};
+    const std::array<NodeValues, 4>&first = fields.component[0], &second = fields.component[1];
+    const double second_weight = fields.components == 2 ? 1.0 : 0.0;
+    double least_omega = std::numeric_limits<double>::infinity();
+#pragma omp simd reduction(min : least_omega)
     for (std::size_t j = 0; j < kSpectralNodes; ++j) {
         const double h = 0.5 * phase_difference[j];
         const double omega = std::sqrt(std::max(h * h + fields.coupling_product[j], 0.0));
-        if (!(omega > kLeastRotation_rad)) return std::nullopt;
+        least_omega = std::min(least_omega, omega);
         two_omega[j] = 2.0 * omega;
-        for (int k = 0; k < fields.components; ++k) {
-            const std::array<NodeValues, 4>& f = fields.component[static_cast<std::size_t>(k)];
-            const double a = f[0][j] + f[1][j], b = f[3][j] - f[2][j], c = f[0][j] - f[1][j];
-            const double d = (b * b + h * h * c * c) / (omega * omega);
-            smooth[j] += 0.5 * (a * a + d);
-            cosine_part[j] += 0.5 * (a * a - d);
-            sine_part[j] += a * b / omega;
-        }
+        const double inverse_omega = 1.0 / std::max(omega, kLeastRotation_rad);
+        const double a0 = first[0][j] + first[1][j], b0 = first[3][j] - first[2][j], c0 = first[0][j] - first[1][j];
+        const double a1 = second[0][j] + second[1][j], b1 = second[3][j] - second[2][j], c1 = second[0][j] - second[1][j];
+        const double a_squared = a0 * a0 + second_weight * a1 * a1;
+        const double d = (b0 * b0 + h * h * c0 * c0 + second_weight * (b1 * b1 + h * h * c1 * c1)) * inverse_omega * inverse_omega;
+        smooth[j] = 0.5 * (a_squared + d);
+        cosine_part[j] = 0.5 * (a_squared - d);
+        sine_part[j] = (a0 * b0 + second_weight * a1 * b1) * inverse_omega;
     }
+    if (!(least_omega > kLeastRotation_rad)) return std::nullopt;
     if (!(nodes.tail(two_omega) <= kPhaseTolerance_rad)) return std::nullopt;
     for (const NodeValues* part : {&smooth, &cosine_part, &sine_part}) {
         if (!(nodes.tail(*part) <= kTermTolerance)) return std::nullopt;
