@@ -1,10 +1,10 @@
 #pragma once
-// The colour of an image point straight from its spectral nodes, where no plate is in the way. Behind real polars
-// the transmission is Σ_k (c₀ₖ + c₁ₖ)² − 4 sin²(δ/2)·Σ_k c₀ₖc₁ₖ (interference.hpp, pair_intensity); that of an
-// optically active crystal S + X cos 2Ω + Y sin 2Ω with smooth S, X, Y. The colour of the smooth terms is a
-// quadratic or linear form in node values, so only the oscillating term is summed over the wavelengths, from two
-// or three interpolated quantities, and not even that where it is smooth itself (docs/theory.md, "White light
-// from spectral nodes").
+// The colour of an image point straight from its spectral nodes. Behind real polars the transmission is
+// Σ_k (c₀ₖ + c₁ₖ)² − 4 sin²(δ/2)·Σ_k c₀ₖc₁ₖ (interference.hpp, pair_intensity); that of an optically active crystal
+// S + X cos 2Ω + Y sin 2Ω with smooth S, X, Y; behind an accessory plate PlateNodeTerms' form. The colour of the
+// smooth terms is a quadratic or linear form in node values, so only the oscillating terms are summed over the
+// wavelengths, from a few interpolated quantities, and not even that where they are smooth themselves
+// (docs/theory.md, "White light from spectral nodes").
 #include "spectral_nodes.hpp"
 
 #include <Eigen/Core>
