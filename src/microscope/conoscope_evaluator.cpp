@@ -102,6 +102,11 @@ ConoscopeEvaluator::ConoscopeEvaluator(const ConoscopeSettings& settings, const 
         set_gyration(spectral_samples_, gyration_lab_);
         if (monochromatic_samples_) set_gyration(*monochromatic_samples_, gyration_lab_);  // one wavelength: repeated
     }
+    if (settings.plate) {
+        for (const double wavelength_nm : settings.wavelengths_nm) plate_jones_lab_.push_back(plate_jones_lab(*settings.plate, wavelength_nm, false));
+        set_plate(spectral_samples_, plate_jones_lab_, polars_);
+        if (monochromatic_samples_) set_plate(*monochromatic_samples_, plate_jones_lab_, polars_);  // one wavelength: repeated
+    }
     if (interpolates_spectrum(settings)) {
         nodes_.emplace(settings.wavelengths_nm);
         const std::vector<BinormalFrame> node_frames = frames_for(settings, principal_n, nodes_->wavelengths_nm());
@@ -109,14 +114,9 @@ ConoscopeEvaluator::ConoscopeEvaluator(const ConoscopeSettings& settings, const 
         if (settings.gyration) set_gyration(*node_samples_, gyration_for(settings, nodes_->wavelengths_nm()));
         if (colour_weights != nullptr && !settings.plate) node_colour_.emplace(*nodes_, *colour_weights);
         if (colour_weights != nullptr && settings.plate) {
-            plate_frame_ = plate_frame(*settings.plate, settings.wavelengths_nm, *nodes_, polars_.analyzer, polars_.analyzer_in);
+            plate_frame_ = plate_frame(*settings.plate, plate_jones_lab_, *nodes_, polars_.analyzer, polars_.analyzer_in);
             if (plate_frame_) node_colour_.emplace(*nodes_, *colour_weights, plate_frame_->phase_rad);
         }
-    }
-    if (settings.plate) {
-        for (const double wavelength_nm : settings.wavelengths_nm) plate_jones_lab_.push_back(plate_jones_lab(*settings.plate, wavelength_nm, false));
-        set_plate(spectral_samples_, plate_jones_lab_, polars_);
-        if (monochromatic_samples_) set_plate(*monochromatic_samples_, plate_jones_lab_, polars_);  // one wavelength: repeated
     }
 }
 

@@ -213,17 +213,16 @@ std::optional<Eigen::Vector3d> NodeColour::active_xyz(const SpectralNodes& nodes
 #pragma omp simd reduction(min : least_omega)
     for (std::size_t j = 0; j < kSpectralNodes; ++j) {
         const double h = 0.5 * phase_difference[j];
-        const double omega = std::sqrt(std::max(h * h + fields.coupling_product[j], 0.0));
+        const double omega = active_rotation(h, fields.coupling_product[j]);
         least_omega = std::min(least_omega, omega);
         two_omega[j] = 2.0 * omega;
         const double inverse_omega = 1.0 / std::max(omega, kLeastRotation_rad);
-        const double a0 = first[0][j] + first[1][j], b0 = first[3][j] - first[2][j], c0 = first[0][j] - first[1][j];
-        const double a1 = second[0][j] + second[1][j], b1 = second[3][j] - second[2][j], c1 = second[0][j] - second[1][j];
-        const double a_squared = a0 * a0 + second_weight * a1 * a1;
-        const double d = (b0 * b0 + h * h * c0 * c0 + second_weight * (b1 * b1 + h * h * c1 * c1)) * inverse_omega * inverse_omega;
+        const ActiveSums u = active_sums(first, j), v = active_sums(second, j);
+        const double a_squared = u.a * u.a + second_weight * v.a * v.a;
+        const double d = (u.b * u.b + h * h * u.c * u.c + second_weight * (v.b * v.b + h * h * v.c * v.c)) * inverse_omega * inverse_omega;
         smooth[j] = 0.5 * (a_squared + d);
         cosine_part[j] = 0.5 * (a_squared - d);
-        sine_part[j] = (a0 * b0 + second_weight * a1 * b1) * inverse_omega;
+        sine_part[j] = (u.a * u.b + second_weight * v.a * v.b) * inverse_omega;
     }
     if (!(least_omega > kLeastRotation_rad)) return std::nullopt;
     if (!(nodes.tail(two_omega) <= kPhaseTolerance_rad)) return std::nullopt;

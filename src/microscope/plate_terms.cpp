@@ -10,22 +10,17 @@
 namespace petroscope::detail {
 namespace {
 
-// J on the plate's axes (columns of `axes`): (μ₁, μ₂), or none where its off-diagonal exceeds 1e-12 of its diagonal.
-std::optional<Eigen::Vector2cd> plate_eigenvalues(const AccessoryPlate& plate, const Eigen::Matrix2d& axes, double wavelength_nm) {
-    const Eigen::Matrix2cd on_axes = axes.transpose() * plate_jones_lab(plate, wavelength_nm, false) * axes;
+// The lab Jones matrix J on the plate's axes (columns of `axes`): (μ₁, μ₂), or none where its off-diagonal exceeds 1e-12
+// of its diagonal.
+std::optional<Eigen::Vector2cd> plate_eigenvalues(const Eigen::Matrix2cd& jones_lab, const Eigen::Matrix2d& axes) {
+    const Eigen::Matrix2cd on_axes = axes.transpose() * jones_lab * axes;
     if (!(std::abs(on_axes(0, 1)) + std::abs(on_axes(1, 0)) <= 1e-12 * (std::abs(on_axes(0, 0)) + std::abs(on_axes(1, 1))))) return std::nullopt;
     return Eigen::Vector2cd(on_axes(0, 0), on_axes(1, 1));
 }
 
-// One component of an active crystal's field leaving the slab, R + iI with R = cos Ω·A + (sin Ω/Ω)·B and
-// I = (sin Ω/Ω)·h·C (spectral_nodes.hpp, interpolated_active_transmission).
-struct ActiveComponent {
-    double a, b, c;
-};
-
 }  // namespace
 
-std::optional<PlateFrame> plate_frame(const AccessoryPlate& plate, const std::vector<double>& grid_nm, const SpectralNodes& nodes,
+std::optional<PlateFrame> plate_frame(const AccessoryPlate& plate, const std::vector<Eigen::Matrix2cd>& grid_jones_lab, const SpectralNodes& nodes,
                                       const Eigen::Vector2d& analyzer, bool analyzer_in) {
     PlateFrame frame;
     frame.slow = unit_at(plate.slow_deg);
@@ -36,14 +31,14 @@ std::optional<PlateFrame> plate_frame(const AccessoryPlate& plate, const std::ve
     const Eigen::Matrix2d g = analyzer_in ? Eigen::Matrix2d(on_axes * on_axes.transpose()) : Eigen::Matrix2d::Identity();
     frame.cross = std::abs(g(0, 1)) > 1e-15;
     for (std::size_t j = 0; j < kSpectralNodes; ++j) {
-        const std::optional<Eigen::Vector2cd> mu = plate_eigenvalues(plate, axes, nodes.wavelengths_nm()[j]);
+        const std::optional<Eigen::Vector2cd> mu = plate_eigenvalues(plate_jones_lab(plate, nodes.wavelengths_nm()[j], false), axes);
         if (!mu) return std::nullopt;
         frame.slow_weight[j] = std::norm((*mu)[0]) * g(0, 0);
         frame.fast_weight[j] = std::norm((*mu)[1]) * g(1, 1);
         frame.cross_weight[j] = 2.0 * std::abs((*mu)[0]) * std::abs((*mu)[1]) * g(0, 1);
     }
-    for (const double wavelength_nm : grid_nm) {
-        const std::optional<Eigen::Vector2cd> mu = plate_eigenvalues(plate, axes, wavelength_nm);
+    for (const Eigen::Matrix2cd& jones_lab : grid_jones_lab) {
+        const std::optional<Eigen::Vector2cd> mu = plate_eigenvalues(jones_lab, axes);
         if (!mu) return std::nullopt;
         frame.phase_rad.push_back(std::arg(std::conj((*mu)[0]) * (*mu)[1]));
     }
@@ -90,14 +85,15 @@ bool active_plate_terms(const PlateFrame& plate, const ActiveNodeFields& fields,
 #pragma omp simd reduction(min : least_omega)
     for (std::size_t j = 0; j < kSpectralNodes; ++j) {
         const double h = 0.5 * phase_difference[j];
-        const double omega = std::sqrt(std::max(h * h + fields.coupling_product[j], 0.0));
+        const double omega = active_rotation(h, fields.coupling_product[j]);
         least_omega = std::min(least_omega, omega);
         terms.angle[j] = 2.0 * omega;
-        // A = F₀ + F₁, B = G₁ − G₀, C = F₀ − F₁ on the lab's x and y, then on the plate's axes.
-        const double a_x = x[0][j] + x[1][j], b_x = x[3][j] - x[2][j], c_x = x[0][j] - x[1][j];
-        const double a_y = y[0][j] + y[1][j], b_y = y[3][j] - y[2][j], c_y = y[0][j] - y[1][j];
-        const ActiveComponent rho{slow.x() * a_x + slow.y() * a_y, slow.x() * b_x + slow.y() * b_y, slow.x() * c_x + slow.y() * c_y};
-        const ActiveComponent pi{fast.x() * a_x + fast.y() * a_y, fast.x() * b_x + fast.y() * b_y, fast.x() * c_x + fast.y() * c_y};
+        // A, B and C on the lab's x and y, then on the plate's axes.
+        const ActiveSums on_x = active_sums(x, j), on_y = active_sums(y, j);
+        const auto on_axis = [&](const Eigen::Vector2d& axis) {
+            return ActiveSums{axis.x() * on_x.a + axis.y() * on_y.a, axis.x() * on_x.b + axis.y() * on_y.b, axis.x() * on_x.c + axis.y() * on_y.c};
+        };
+        const ActiveSums rho = on_axis(slow), pi = on_axis(fast);
         const double inverse_omega = 1.0 / std::max(omega, kLeastRotation_rad), inverse_omega_squared = inverse_omega * inverse_omega;
         const double p1 = plate.slow_weight[j], p2 = plate.fast_weight[j], half_g = 0.5 * plate.cross_weight[j];
         const double d_rho = (rho.b * rho.b + h * h * rho.c * rho.c) * inverse_omega_squared;

@@ -26,8 +26,9 @@ struct PlateFrame {
     bool cross = false;                                       // G₁₂ ≠ 0: an analyzer oblique to the plate's axes
 };
 
-/// None where J is not diagonal on the plate's axes to 1e-12 (every wavelength is then evaluated).
-std::optional<PlateFrame> plate_frame(const AccessoryPlate& plate, const std::vector<double>& grid_nm, const SpectralNodes& nodes,
+/// `grid_jones_lab`: J at every grid wavelength (plate_jones_lab, single pass); J at the nodes is computed here. None
+/// where J is not diagonal on the plate's axes to 1e-12 (every wavelength is then evaluated).
+std::optional<PlateFrame> plate_frame(const AccessoryPlate& plate, const std::vector<Eigen::Matrix2cd>& grid_jones_lab, const SpectralNodes& nodes,
                                       const Eigen::Vector2d& analyzer, bool analyzer_in);
 
 /// A crystal without optical activity: its node fields in the lab (x of the fast and slow mode, then y of the fast

@@ -152,7 +152,7 @@ void over_grid_active(const SpectralNodes& nodes, const ActiveNodeFields& fields
             }
         }
         const double half_delta = 0.5 * delta;
-        const double omega = std::sqrt(std::max(half_delta * half_delta + p, 0.0));
+        const double omega = active_rotation(half_delta, p);
         const SineCosine sc = sine_cosine(omega);
         const double sinc = sinc_from_sine(omega, sc.sine);
         out[w] = evaluate(w, component_field(a0, a1, a2, a3, sc.cosine, sinc, half_delta),

@@ -6,6 +6,7 @@
 // the grid, and the interference is evaluated there (docs/theory.md, "White light from spectral nodes").
 #include "petroscope/microscope/conoscope.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -98,6 +99,20 @@ struct ActiveNodeFields {
     std::array<std::array<NodeValues, 4>, 2> component{};  // [k]: F₀, F₁, G₀, G₁
     NodeValues coupling_product{};
 };
+
+/// An active crystal's rotation Ω = √(h² + b₀b₁) for h = δ/2 (b₀b₁ ≥ 0 up to rounding).
+inline double active_rotation(double half_delta, double coupling_product) {
+    return std::sqrt(std::max(half_delta * half_delta + coupling_product, 0.0));
+}
+
+/// One component's A = F₀ + F₁, B = G₁ − G₀ and C = F₀ − F₁ (ActiveNodeFields' F₀, F₁, G₀, G₁ at node j), with which the
+/// component leaving the slab is cos Ω·A + (sin Ω/Ω)·B + i(sin Ω/Ω)·h·C.
+struct ActiveSums {
+    double a, b, c;
+};
+inline ActiveSums active_sums(const std::array<NodeValues, 4>& component, std::size_t j) {
+    return {component[0][j] + component[1][j], component[3][j] - component[2][j], component[0][j] - component[1][j]};
+}
 
 /// Transmission at every grid wavelength of an optically active crystal: each component of the field leaving
 /// the slab is R + iI with R = cos Ω·(F₀ + F₁) + (sin Ω/Ω)·(G₁ − G₀) and I = (sin Ω/Ω)·(δ/2)·(F₀ − F₁),

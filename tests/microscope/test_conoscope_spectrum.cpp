@@ -293,17 +293,18 @@ TEST(ConoscopeSpectrum, PlateColourFromNodesMatchesTheIntegratedInterpolatedSpec
     for (const PlateKind kind : {PlateKind::gypsum, PlateKind::wedge}) {
         const AccessoryPlate plate = make_accessory_plate(kind, testing::repository_minerals().find(kind == PlateKind::gypsum ? "gypsum" : "quartz"), 30.0, 0.9);
         for (const bool analyzer_in : {true, false}) {
-            const std::optional<detail::PlateFrame> frame = detail::plate_frame(plate, grid, nodes, analyzer, analyzer_in);
+            std::vector<Eigen::Matrix2cd> jones(grid.size());
+            for (std::size_t w = 0; w < grid.size(); ++w) jones[w] = plate_jones_lab(plate, grid[w], false);
+            const std::optional<detail::PlateFrame> frame = detail::plate_frame(plate, jones, nodes, analyzer, analyzer_in);
             ASSERT_TRUE(frame.has_value());
             EXPECT_EQ(frame->cross, analyzer_in);
             const detail::NodeColour colour(nodes, integrator.weights(), frame->phase_rad);
             // The analyzers after the plate at every grid wavelength, bᵀ = aᵀJ (SampleCrystal::plate_analyzer).
             std::array<std::array<std::vector<double>, 4>, 2> analyzer_parts;
             for (std::size_t w = 0; w < grid.size(); ++w) {
-                const Eigen::Matrix2cd jones = plate_jones_lab(plate, grid[w], false);
                 for (std::size_t k = 0; k < 2; ++k) {
                     const Eigen::Vector2d a = analyzer_in ? analyzer : Eigen::Vector2d::Unit(static_cast<Eigen::Index>(k));
-                    const Eigen::RowVector2cd b = a.transpose().cast<std::complex<double>>() * jones;
+                    const Eigen::RowVector2cd b = a.transpose().cast<std::complex<double>>() * jones[w];
                     const std::array<double, 4> parts{b[0].real(), b[1].real(), b[0].imag(), b[1].imag()};
                     for (std::size_t c = 0; c < 4; ++c) analyzer_parts[k][c].push_back(parts[c]);
                 }
