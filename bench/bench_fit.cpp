@@ -34,7 +34,7 @@ void FitConoscopePhoto512(benchmark::State& state) {
     at(options.initial, PhotoParameter::thickness_um) = 150.0;  // off by a factor of 2
     options.thickness_min_um = 50.0;
     options.thickness_max_um = 450.0;
-    options.free.fill(true);
+    options.free = testing::microscope_unknowns();
     options.free[static_cast<std::size_t>(PhotoParameter::tilt_deg)] = false;
     options.free[static_cast<std::size_t>(PhotoParameter::azimuth_deg)] = false;
     // As the CLI does for a JPEG photo: the encoding's systematic error is measured too.

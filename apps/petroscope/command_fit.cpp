@@ -38,12 +38,18 @@ const std::map<std::string, std::vector<PhotoParameter>>& free_groups() {
         {"black", {PhotoParameter::black_level}},
         {"gamma", {PhotoParameter::gamma}},
         {"blur", {PhotoParameter::blur_variance_px2}},
+        {"envelope", {PhotoParameter::envelope_center_x_px, PhotoParameter::envelope_center_y_px, PhotoParameter::envelope_radius_px,
+                      PhotoParameter::envelope_power}},
+        {"distortion", {PhotoParameter::distortion}},
+        {"analyzer", {PhotoParameter::analyzer_offset_deg}},
+        {"extinction", {PhotoParameter::extinction_ratio}},
     };
     return groups;
 }
 
 struct FitOptions {
     std::string photo, mineral = "muscovite", cut, thickness, thickness_range, output_dir, handedness = "right";
+    std::string projection = "sine", field_stop = "sharp", illumination = "even";
     std::string free = "thickness,center,scale,rotation,white-balance,black,gamma,blur";
     std::vector<std::string> fixed;
     double azimuth_deg = 0.0, tilt_deg = 0.0, na = 0.85, polarizer_deg = 0.0, analyzer_deg = 90.0, surround_n = 1.54;
@@ -94,6 +100,9 @@ nlohmann::json report_json(const ConoscopeFitResult& result, const FitOptions& o
             {"analyzer_deg", options.analyzer_deg},
             {"surround_n", options.surround_n},
             {"handedness", options.handedness},
+            {"projection", options.projection},
+            {"field_stop", options.field_stop},
+            {"illumination", options.illumination},
             {"thickness_search_um", {fit_options.thickness_min_um, fit_options.thickness_max_um}},
             {"acceptable", result.acceptable},
             {"verdict", result.verdict},
@@ -106,8 +115,9 @@ nlohmann::json report_json(const ConoscopeFitResult& result, const FitOptions& o
             {"pixels_saturated", result.pixels_saturated},
             {"iterations", result.iterations},
             {"seconds", seconds},
-            {"model", "camera value = black + (gain * linear sRGB)^(1/gamma); figure: single-pass Jones from the exact eigenmodes "
-                      "(ConoscopeTerms), blur by the local fringe approximation; see docs/fitting.md"},
+            {"model", "camera value = black + (gain * envelope * linear sRGB)^(1/gamma); figure: single-pass Jones from the exact "
+                      "eigenmodes (ConoscopeTerms) through the analyzer plus extinction_ratio times the light it blocks, blur by the "
+                      "local fringe approximation; see docs/fitting.md"},
             {"sigma_meaning", "1 sigma from the Ceres covariance with a cluster-robust (sandwich) correction over blocks of the field; "
                               "for a checked JPEG photo, plus encoding_shift in quadrature (the shift when the best fit is encoded "
                               "as the photo was and fitted again)"}};
@@ -136,6 +146,9 @@ void run_fit_conoscope(const FitOptions& options, const std::string& minerals_di
     setup.analyzer_deg = options.analyzer_deg;
     setup.surround_n = options.surround_n;
     setup.handedness = with_option("--handedness", [&] { return parse_handedness(options.handedness); });
+    setup.projection = with_option("--projection", [&] { return parse_projection(options.projection); });
+    setup.field_stop = with_option("--field-stop", [&] { return parse_field_stop(options.field_stop); });
+    setup.illumination = with_option("--illumination", [&] { return parse_illumination(options.illumination); });
     const ConoscopePhotoModel model = conoscope_photo_model(mineral, setup);
 
     ConoscopeFitOptions fit;
@@ -158,6 +171,7 @@ void run_fit_conoscope(const FitOptions& options, const std::string& minerals_di
         }
         for (const PhotoParameter p : found->second) fit.free[static_cast<std::size_t>(p)] = true;
     }
+    with_option("--free", [&] { free_envelope_with_falloff(fit, model); });
     for (const std::string& assignment : options.fixed) {
         const auto parts = split(assignment, '=');
         const auto value = parts.size() == 2 ? parse_double(parts[1]) : std::nullopt;
@@ -208,6 +222,8 @@ void run_fit_conoscope(const FitOptions& options, const std::string& minerals_di
 
     finish_fit(options.json, report, result.acceptable, result.verdict, [&] {
         for (int j = 0; j < kPhotoParameterCount; ++j) {
+            const bool envelope = j >= static_cast<int>(PhotoParameter::envelope_center_x_px) && j <= static_cast<int>(PhotoParameter::envelope_power);
+            if (envelope && model.illumination == IlluminationProfile::even) continue;
             std::cout << "  " << photo_parameter_name(static_cast<PhotoParameter>(j)) << " = "
                       << fitted_value_text(result.parameters[static_cast<std::size_t>(j)]) << '\n';
         }
@@ -249,7 +265,16 @@ void add_fit_command(CLI::App& app, const std::string& minerals_dir) {
     conoscope->add_option("--thickness", options->thickness, "Starting thickness with unit; searches thickness/3 … 3·thickness")->type_name(length_type);
     conoscope->add_option("--thickness-range", options->thickness_range, "The global search range, MIN:MAX with units (default 5um:5mm)");
     conoscope->add_option("--free", options->free, "Parameters to fit, comma-separated groups: thickness, center, scale, rotation, tilt,\n"
-                                                   "white-balance, black, gamma, blur")->capture_default_str();
+                                                   "white-balance, black, gamma, blur, distortion, analyzer, extinction (and envelope,\n"
+                                                   "freed by --illumination falloff)")->capture_default_str();
+    conoscope->add_option("--projection", options->projection,
+                          "How directions map to the photo: sine (microscope objective), tangent (camera or lens looking through\n"
+                          "the crystal, figure on a screen), equidistant")->capture_default_str();
+    conoscope->add_option("--field-stop", options->field_stop,
+                          "sharp (the objective's aperture edge, at sin(theta_air) = NA) or none (the frame and the light's falloff\n"
+                          "bound the field)")->capture_default_str();
+    conoscope->add_option("--illumination", options->illumination,
+                          "even, or falloff: the light falls off as exp(-(r/R)^p) about its own centre (fitted)")->capture_default_str();
     conoscope->add_option("--fix", options->fixed, "NAME=VALUE: hold a parameter (names as in report.json, e.g. field_radius_px=250)");
     conoscope->add_option("--na", options->na, "Numerical aperture of the objective")->capture_default_str();
     conoscope->add_option("--polarizer-deg", options->polarizer_deg, "Polarizer direction in the lab")->capture_default_str();

@@ -190,6 +190,9 @@ def fit_conoscope(
     fixed: dict[str, float] = {},
     candidates: int = 3,
     handedness: str = "right",
+    projection: str = "sine",
+    field_stop: str = "sharp",
+    illumination: str = "even",
     progress: Progress = None,
     verbose: bool = False,
 ) -> dict[str, object]: ...

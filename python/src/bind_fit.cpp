@@ -57,12 +57,16 @@ py::dict fit_conoscope(const py::array& photo_array, const std::string& mineral,
                        double numerical_aperture, double polarizer_deg, double analyzer_deg, double surround_n, std::optional<double> thickness_um,
                        std::optional<std::pair<double, double>> thickness_range_um, double tilt_deg, double azimuth_deg,
                        const std::vector<std::string>& free, const std::map<std::string, double>& fixed, int candidates,
-                       const std::string& handedness, const py::object& progress, bool verbose) {
+                       const std::string& handedness, const std::string& projection, const std::string& field_stop,
+                       const std::string& illumination, const py::object& progress, bool verbose) {
     const Image photo = image_argument(photo_array, "photo");
     show_solver_messages(verbose);
     const ConoscopePhotoSetup setup{.cut = cut ? std::optional(parse_cut(*cut)) : std::nullopt, .light = light_argument(light),
                                     .numerical_aperture = numerical_aperture, .polarizer_deg = polarizer_deg,
-                                    .analyzer_deg = analyzer_deg, .surround_n = surround_n, .handedness = parse_handedness(handedness)};
+                                    .analyzer_deg = analyzer_deg, .surround_n = surround_n, .handedness = parse_handedness(handedness),
+                                    .projection = parse_projection(projection), .field_stop = parse_field_stop(field_stop),
+                                    .illumination = parse_illumination(illumination)};
+    const ConoscopePhotoModel model = conoscope_photo_model(catalog().find(mineral), setup);
     ConoscopeFitOptions options;
     options.initial = default_photo_parameters(photo.width, photo.height);
     at(options.initial, PhotoParameter::tilt_deg) = tilt_deg;
@@ -71,13 +75,13 @@ py::dict fit_conoscope(const py::array& photo_array, const std::string& mineral,
     options.candidates = candidates;
     options.free.fill(false);
     for (const std::string& name : free) options.free[static_cast<std::size_t>(parse_photo_parameter(name))] = true;
+    free_envelope_with_falloff(options, model);
     for (const auto& [name, value] : fixed) {
         const auto p = static_cast<std::size_t>(parse_photo_parameter(name));
         options.initial[p] = value;
         options.free[p] = false;
     }
     auto [result, model_photo] = with_progress(progress, [&](const ProgressCallback& callback) {
-        const ConoscopePhotoModel model = conoscope_photo_model(catalog().find(mineral), setup);
         ConoscopeFitResult fitted = fit_conoscope_photo(photo, model, options, callback);
         Image rendered = render_conoscope_photo(model, fitted.values, photo.width, photo.height);
         return std::pair{std::move(fitted), std::move(rendered)};
@@ -230,7 +234,8 @@ void bind_fit(py::module_& module) {
                py::arg("analyzer_deg") = 90.0, py::arg("surround_n") = 1.54, py::arg("thickness_um") = py::none(),
                py::arg("thickness_range_um") = py::none(), py::arg("tilt_deg") = 0.0, py::arg("azimuth_deg") = 0.0,
                py::arg("free") = default_free, py::arg("fixed") = std::map<std::string, double>{}, py::arg("candidates") = 3,
-               py::arg("handedness") = "right", py::arg("progress") = py::none(), py::arg("verbose") = false,
+               py::arg("handedness") = "right", py::arg("projection") = "sine", py::arg("field_stop") = "sharp",
+               py::arg("illumination") = "even", py::arg("progress") = py::none(), py::arg("verbose") = false,
                R"(Fits a photo of a conoscopic figure: the slab's thickness, the figure's centre, scale and rotation,
 the cut's tilt, the camera's gains, black level, gamma and blur (docs/fitting.md).
 
@@ -239,9 +244,15 @@ mineral, cut, light, numerical_aperture, polarizer_deg, analyzer_deg, surround_n
   photo, as for conoscope(). thickness_um: a starting thickness (searched from a third to three times it);
   thickness_range_um: (min, max) to search instead. tilt_deg, azimuth_deg: the cut's starting tilt.
 free: the parameters fitted, by name (thickness_um, center_x_px, center_y_px, field_radius_px,
-  rotation_deg, tilt_deg, azimuth_deg, gain_r, gain_g, gain_b, black_level, gamma, blur_variance_px2);
-  fixed: {name: value} held at a value. candidates: thickness minima refined. handedness: 'right' or 'left',
-  the form of an optically active mineral (quartz).
+  rotation_deg, tilt_deg, azimuth_deg, gain_r, gain_g, gain_b, black_level, gamma, blur_variance_px2,
+  distortion, analyzer_offset_deg, extinction_ratio; envelope_center_x_px, envelope_center_y_px,
+  envelope_radius_px, envelope_power are freed by illumination='falloff'); fixed: {name: value} held at a
+  value. candidates: thickness minima refined. handedness: 'right' or 'left', the form of an optically
+  active mineral (quartz).
+projection: 'sine' (a microscope objective), 'tangent' (a camera or lens looking through the crystal, a
+  figure on a screen) or 'equidistant'. field_stop: 'sharp' (the objective's aperture edge) or 'none'
+  (the frame and the light's falloff bound the field). illumination: 'even' or 'falloff' (the light
+  falls off as exp(-(r/R)^p) about its own centre, fitted).
 progress: called with the fraction done; return False to cancel. Ctrl-C cancels.
 verbose: the solver's (Ceres's) messages and its progress per iteration on standard error; off, it prints
   nothing (as the command line without --verbose).

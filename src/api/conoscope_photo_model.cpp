@@ -4,7 +4,9 @@
 #include "petroscope/core/error.hpp"
 #include "petroscope/microscope/polarizing_microscope.hpp"
 
+#include <array>
 #include <cmath>
+#include <string>
 #include <tuple>
 
 namespace petroscope {
@@ -27,7 +29,24 @@ ConoscopePhotoModel conoscope_photo_model(const Mineral& mineral, const Conoscop
     };
     model.rgb_per_transmission = rgb_per_transmission(setup.light);
     model.settings.gyration = mineral_gyration(mineral, setup.handedness);
+    model.projection = setup.projection;
+    model.field_stop = setup.field_stop;
+    model.illumination = setup.illumination;
     return model;
+}
+
+void free_envelope_with_falloff(ConoscopeFitOptions& options, const ConoscopePhotoModel& model) {
+    constexpr std::array<PhotoParameter, 4> kEnvelope{PhotoParameter::envelope_center_x_px, PhotoParameter::envelope_center_y_px,
+                                                      PhotoParameter::envelope_radius_px, PhotoParameter::envelope_power};
+    for (const PhotoParameter p : kEnvelope) {
+        bool& free = options.free[static_cast<std::size_t>(p)];
+        if (model.illumination == IlluminationProfile::falloff) {
+            free = true;
+        } else if (free) {
+            throw InputError("the illumination is even, so there is no envelope to fit (" + std::string(photo_parameter_name(p)) +
+                             "); choose the falloff illumination");
+        }
+    }
 }
 
 void set_thickness_search(ConoscopeFitOptions& options, std::optional<double> start_um, std::optional<std::pair<double, double>> range_um) {

@@ -28,13 +28,16 @@ using Bounds = detail::PhotoBounds;
 
 constexpr std::array<std::string_view, kPhotoParameterCount> kNames{
     "thickness_um", "center_x_px", "center_y_px", "field_radius_px", "rotation_deg", "tilt_deg", "azimuth_deg",
-    "gain_r",       "gain_g",      "gain_b",      "black_level",     "gamma",        "blur_variance_px2"};
+    "gain_r",       "gain_g",      "gain_b",      "black_level",     "gamma",        "blur_variance_px2",
+    "envelope_center_x_px", "envelope_center_y_px", "envelope_radius_px", "envelope_power", "distortion", "analyzer_offset_deg",
+    "extinction_ratio"};
 
 constexpr std::size_t index_of(PhotoParameter p) { return static_cast<std::size_t>(p); }
 
-// A 1σ beyond these says the photo does not determine the parameter (in its own unit; thickness relative).
-constexpr std::array<double, kPhotoParameterCount> kUnidentifiedSigma{0.2, 0.0, 0.0, 0.0, 20.0, 20.0, 45.0,
-                                                                      0.5, 0.5, 0.5, 0.2,    1.0,  25.0};
+// A 1σ beyond these says the photo does not determine the parameter (in its own unit; thickness and
+// envelope radius relative; the centres and the field radius: uncertainties() sets theirs).
+constexpr std::array<double, kPhotoParameterCount> kUnidentifiedSigma{0.2, 0.0, 0.0, 0.0, 20.0, 20.0, 45.0, 0.5, 0.5, 0.5,
+                                                                      0.2, 1.0, 25.0, 0.0, 0.0, 0.5, 10.0, 0.2, 10.0, 0.05};
 
 /// The photo as three channels of camera values; InputError for what cannot be fitted.
 Image colour_photo(const Image& photo, bool white_light) {
@@ -70,9 +73,10 @@ Image colour_photo(const Image& photo, bool white_light) {
     return rgb;
 }
 
-/// The field edge's radius around `centre`: where the mean value on circles about it falls below a fifth
-/// of the inner field's (conoscopic photos show the lit aperture on black). `fallback` when not found.
-double field_edge_radius(const Image& photo, const Eigen::Vector2d& centre, double fallback) {
+/// The radius around `centre` where the mean value on circles about it falls below `fraction` of the inner
+/// field's (within `fallback`/2) for five pixels running: a field edge (conoscopic photos show the lit
+/// aperture on black) or how far the light reaches. `fallback` when not found.
+double radius_where_light_falls(const Image& photo, const Eigen::Vector2d& centre, double fraction, double fallback) {
     const int bins = static_cast<int>(std::hypot(photo.width, photo.height)) + 1;
     std::vector<double> sum(bins, 0.0), count(bins, 0.0);
     for (int y = 0; y < photo.height; ++y) {
@@ -88,7 +92,7 @@ double field_edge_radius(const Image& photo, const Eigen::Vector2d& centre, doub
     for (int bin = 0; bin < inner; ++bin) inner_means.push_back(mean(bin));
     if (inner_means.empty()) return fallback;
     std::nth_element(inner_means.begin(), inner_means.begin() + inner_means.size() / 2, inner_means.end());
-    const double threshold = 0.2 * inner_means[inner_means.size() / 2];
+    const double threshold = fraction * inner_means[inner_means.size() / 2];
     for (int bin = inner; bin + 5 < bins; ++bin) {
         // A ring mostly outside the image says nothing.
         if (count[bin] < 0.3 * 2.0 * std::numbers::pi * (bin + 0.5)) break;
@@ -167,11 +171,15 @@ std::vector<ThicknessMinimum> thickness_minima(const PhotoLevel& level, const st
     detail::PhaseDerivatives phase;
     level.evaluator.terms(values, terms);
     level.evaluator.phase_derivatives(terms, phase);
+    const std::vector<detail::EnvelopeValue> envelope = level.evaluator.envelope(values);
     const double blur2 = at(values, PhotoParameter::blur_variance_px2) + level.extra_blur_px * level.extra_blur_px;
+    const std::vector<Eigen::Vector2d> shifts = level.evaluator.blur_shifts(envelope, blur2);
     // Fringes are resolved (attenuation above e^−2) while σ²d²|∇Φ|² < 4: the largest phase among those,
     // found from the terms sorted by |∇Φ|.
     std::vector<std::pair<double, double>> by_gradient;  // (|∇Φ|², |Φ|)
-    for (std::size_t k = 0; k < terms.size(); ++k) by_gradient.emplace_back(phase.gradient2[k], std::abs(terms[k].phase_per_um));
+    for (std::size_t k = 0; k < terms.size(); ++k) {
+        by_gradient.emplace_back(phase.gradient_x[k] * phase.gradient_x[k] + phase.gradient_y[k] * phase.gradient_y[k], std::abs(terms[k].phase_per_um));
+    }
     std::sort(by_gradient.begin(), by_gradient.end());
     std::vector<double> running_max(by_gradient.size());
     double largest = 0.0;
@@ -185,13 +193,16 @@ std::vector<ThicknessMinimum> thickness_minima(const PhotoLevel& level, const st
     // the signal whose rate of change sets the step.
     const std::size_t wavelengths = level.evaluator.wavelength_count();
     std::vector<Eigen::Vector3d> fringe_free(level.evaluator.sample_count(), Eigen::Vector3d::Zero());
-    for (std::size_t k = 0; k < terms.size(); ++k) fringe_free[k / wavelengths] += rgb_per_transmission[k % wavelengths] * terms[k].mean;
+    for (std::size_t k = 0; k < terms.size(); ++k) {
+        fringe_free[k / wavelengths] += rgb_per_transmission[k % wavelengths] * (terms[k].mean * envelope[k / wavelengths].value);
+    }
     const double gamma = at(values, PhotoParameter::gamma);
     std::vector<double> thicknesses, costs;
     detail::LinearSamples linear;
     const bool weighted = step_rule == StepRule::power_weighted_fringes;
     for (double t = min_um; t <= max_um;) {
-        level.evaluator.linear(terms, phase, t, blur2, weighted, linear);
+        level.evaluator.linear(terms, phase, t, blur2, shifts, weighted, linear);
+        level.evaluator.illuminate(envelope, linear);
         // The power-weighted rate Φ_eff: the rms rate of change of the fringe signal s = rgb − fringe_free
         // relative to its rms, Φ_eff² = Σ|∂s/∂d|² / Σ|s|² (for one fringe s = A·cos(Φd): Φ); it weights
         // each fringe by its power in the photo, after the blur and after high orders wash out to white.
@@ -342,10 +353,16 @@ void uncertainties(ceres::Problem& problem, const PhotoCost& cost, const PhotoLe
         double limit = kUnidentifiedSigma[k];
         if (j == static_cast<int>(PhotoParameter::thickness_um)) limit *= fitted.value;
         if (j >= static_cast<int>(PhotoParameter::center_x_px) && j <= static_cast<int>(PhotoParameter::field_radius_px)) limit = 0.1 * radius;
+        if (j == static_cast<int>(PhotoParameter::envelope_radius_px)) limit *= fitted.value;
+        if (j == static_cast<int>(PhotoParameter::envelope_center_x_px) || j == static_cast<int>(PhotoParameter::envelope_center_y_px)) {
+            limit = 0.5 * at(result.values, PhotoParameter::envelope_radius_px);
+        }
         fitted.identifiable = !unidentified[k] && std::isfinite(sigma) && sigma <= limit;
         if (fitted.identifiable) fitted.sigma = sigma;
     }
-    // Pairs the photo cannot tell apart (|correlation| > 0.99995, a degeneracy): neither is a measurement.
+    // Pairs the photo cannot tell apart (|correlation| > 0.9999: either one's 1σ is over 70 times what it
+    // would be with the other known, so only the model's finest details separate them): neither is a
+    // measurement.
     // Above 0.999 the pair is only weakly separated: a warning, the 1σ says how weakly.
     for (int a = 0; a < p; ++a) {
         for (int b = 0; b < a; ++b) {
@@ -354,7 +371,7 @@ void uncertainties(ceres::Problem& problem, const PhotoCost& cost, const PhotoLe
             if (!(denominator > 0.0)) continue;
             const double correlation = block[ka * kPhotoParameterCount + kb] / denominator;
             if (std::abs(correlation) <= 0.999) continue;
-            const bool degenerate = std::abs(correlation) > 0.99995;
+            const bool degenerate = std::abs(correlation) > 0.9999;
             result.warnings.push_back(std::string(kNames[kb]) + " and " + std::string(kNames[ka]) + " are correlated " +
                                       format_significant(correlation, 6) +
                                       (degenerate ? ": the photo determines only a combination of them" : ": the photo separates them only weakly"));
@@ -368,8 +385,19 @@ void uncertainties(ceres::Problem& problem, const PhotoCost& cost, const PhotoLe
     const auto& thickness = result.parameters[index_of(PhotoParameter::thickness_um)];
     const auto& scale_fit = result.parameters[index_of(PhotoParameter::field_radius_px)];
     if (thickness.free && !thickness.identifiable && scale_fit.free) {
-        result.warnings.push_back("the thickness is not determined: a centred uniaxial figure fixes only thickness x scale^2 "
-                                  "(the ring radii); fix the scale (--fix field_radius_px=...) or use an off-centre figure");
+        // What the photo does determine: the ring radii, phase ∝ d·ξ² ∝ d·(pixels/r)², so d/r², with its 1σ
+        // from the same covariance (var ln(d/r²) = var d/d² + 4 var r/r² − 4 cov(d, r)/(d·r)).
+        const std::size_t d = index_of(PhotoParameter::thickness_um), r = index_of(PhotoParameter::field_radius_px);
+        const double thickness_um = result.values[d], radius_px = result.values[r];
+        // The encoding's shift of each adds in quadrature, as for every parameter.
+        const double encoding_shift = result.encoding_shift ? (*result.encoding_shift)[d] / thickness_um - 2.0 * (*result.encoding_shift)[r] / radius_px : 0.0;
+        const double relative_variance = sandwich(d, d) / (thickness_um * thickness_um) + 4.0 * sandwich(r, r) / (radius_px * radius_px) -
+                                         4.0 * sandwich(d, r) / (thickness_um * radius_px) + encoding_shift * encoding_shift;
+        const double ratio = thickness_um / (radius_px * radius_px);
+        const std::string sigma = computed && relative_variance >= 0.0 ? " +- " + format_significant(ratio * std::sqrt(relative_variance), 3) : "";
+        result.warnings.push_back("the thickness is not determined: a centred uniaxial figure fixes only thickness x scale^2 (the ring "
+                                  "radii; scale = sin(theta) per pixel = NA / field_radius_px), here thickness_um / field_radius_px^2 = " +
+                                  format_significant(ratio, 6) + sigma + "; fix the scale (--fix field_radius_px=...) or use an off-centre figure");
     }
     for (int j = 0; j < kPhotoParameterCount; ++j) {
         const FittedValue& fitted = result.parameters[static_cast<std::size_t>(j)];
@@ -386,8 +414,10 @@ void uncertainties(ceres::Problem& problem, const PhotoCost& cost, const PhotoLe
 Image render_photo_on_lattices(const ConoscopePhotoModel& model, const PhotoParameters& values, int width_px, int height_px,
                                const Eigen::Vector2d& anchor, int stride_px) {
     const Eigen::Vector2d centre(at(values, PhotoParameter::center_x_px), at(values, PhotoParameter::center_y_px));
-    const double radius = at(values, PhotoParameter::field_radius_px);
-    const double reach = radius + (centre - anchor).norm() + 2.0 * stride_px;
+    // Without a field stop the light reaches the whole frame.
+    const double radius = model.field_stop == FieldStop::sharp ? at(values, PhotoParameter::field_radius_px) : std::numeric_limits<double>::infinity();
+    const double reach = model.field_stop == FieldStop::sharp ? radius + (centre - anchor).norm() + 2.0 * stride_px
+                                                              : std::hypot(width_px, height_px) + 2.0 * stride_px;
     Image image(width_px, height_px, 3);
     std::vector<InterferenceTerms> terms;
     detail::PhaseDerivatives phase;
@@ -398,8 +428,10 @@ Image render_photo_on_lattices(const ConoscopePhotoModel& model, const PhotoPara
                 model, detail::sample_lattice(anchor + Eigen::Vector2d(dx, dy), reach, stride_px, width_px, height_px));
             evaluator.terms(values, terms);
             evaluator.phase_derivatives(terms, phase);
-            evaluator.linear(terms, phase, at(values, PhotoParameter::thickness_um), at(values, PhotoParameter::blur_variance_px2), false,
-                             linear);
+            const std::vector<detail::EnvelopeValue> envelope = evaluator.envelope(values);
+            const double blur2 = at(values, PhotoParameter::blur_variance_px2);
+            evaluator.linear(terms, phase, at(values, PhotoParameter::thickness_um), blur2, evaluator.blur_shifts(envelope, blur2), false, linear);
+            evaluator.illuminate(envelope, linear);
             const std::vector<Eigen::Vector3d> camera = detail::camera_values(linear.rgb, values);
             for (std::size_t k = 0; k < camera.size(); ++k) {
                 const Eigen::Vector2d& pixel = evaluator.lattice().pixels[k];
@@ -432,11 +464,20 @@ PhotoParameters default_photo_parameters(int width_px, int height_px) {
     at(values, PhotoParameter::gain_r) = at(values, PhotoParameter::gain_g) = at(values, PhotoParameter::gain_b) = 1.0;
     at(values, PhotoParameter::gamma) = 2.2;
     at(values, PhotoParameter::blur_variance_px2) = 1.0;
+    at(values, PhotoParameter::envelope_center_x_px) = 0.5 * width_px;
+    at(values, PhotoParameter::envelope_center_y_px) = 0.5 * height_px;
+    at(values, PhotoParameter::envelope_radius_px) = 0.5 * std::hypot(width_px, height_px);
+    at(values, PhotoParameter::envelope_power) = 2.0;
     return values;
 }
 
-ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePhotoModel& model, const ConoscopeFitOptions& options,
+ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePhotoModel& model, const ConoscopeFitOptions& given_options,
                                        const ProgressCallback& progress) {
+    // Under even light the envelope's parameters act on nothing: they stay fixed.
+    ConoscopeFitOptions options = given_options;
+    if (model.illumination == IlluminationProfile::even) {
+        for (std::size_t k = index_of(PhotoParameter::envelope_center_x_px); k <= index_of(PhotoParameter::envelope_power); ++k) options.free[k] = false;
+    }
     if (!(options.thickness_min_um > 0.0) || !(options.thickness_max_um >= options.thickness_min_um)) {
         throw InputError("the thickness range must be positive and ordered, e.g. 10um:5mm");
     }
@@ -452,17 +493,25 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
     const Image photo = colour_photo(photo_in, white_light);
     PhotoParameters start = options.initial;
     const Eigen::Vector2d centre(at(start, PhotoParameter::center_x_px), at(start, PhotoParameter::center_y_px));
-    const double edge = field_edge_radius(photo, centre, at(start, PhotoParameter::field_radius_px));
-    if (options.free[index_of(PhotoParameter::field_radius_px)]) at(start, PhotoParameter::field_radius_px) = edge;
-    const double sample_radius = 0.85 * std::min(edge, at(start, PhotoParameter::field_radius_px));
+    const bool sharp_stop = model.field_stop == FieldStop::sharp;
+    const double edge = sharp_stop ? radius_where_light_falls(photo, centre, 0.2, at(start, PhotoParameter::field_radius_px)) : 0.0;
+    if (sharp_stop && options.free[index_of(PhotoParameter::field_radius_px)]) at(start, PhotoParameter::field_radius_px) = edge;
+    // An envelope to be fitted starts where the light has fallen to 1/e (in camera values e^(−1/γ)).
+    if (model.illumination == IlluminationProfile::falloff && options.free[index_of(PhotoParameter::envelope_radius_px)]) {
+        at(start, PhotoParameter::envelope_radius_px) = radius_where_light_falls(
+            photo, centre, std::exp(-1.0 / at(start, PhotoParameter::gamma)), at(start, PhotoParameter::envelope_radius_px));
+    }
+    // Samples within 0.85 of a sharp field edge (the blur and the edge's position are not modelled), or
+    // over the whole frame.
+    const double sample_radius = sharp_stop ? 0.85 * std::min(edge, at(start, PhotoParameter::field_radius_px))
+                                            : std::hypot(std::max(centre.x(), photo.width - centre.x()), std::max(centre.y(), photo.height - centre.y()));
 
     // Four levels: the thickness search at the starting geometry and a refinement that finds the geometry
     // (both on the photo blurred further, so that they see the figure despite a wrong geometry), a
     // second thickness scan on the unblurred photo at that geometry, and the full photo; each samples the
     // field on a lattice of about this many pixels.
-    const auto stride = [&](double samples) {
-        return std::max(1, static_cast<int>(std::lround(std::sqrt(std::numbers::pi * sample_radius * sample_radius / samples))));
-    };
+    const double sampled_area = std::min(std::numbers::pi * sample_radius * sample_radius, static_cast<double>(photo.width) * photo.height);
+    const auto stride = [&](double samples) { return std::max(1, static_cast<int>(std::lround(std::sqrt(sampled_area / samples)))); };
     const auto level = [&](int lattice_stride, double extra_blur) {
         return std::make_unique<PhotoLevel>(model, detail::sample_lattice(centre, sample_radius, lattice_stride, photo.width, photo.height),
                                             photo, extra_blur, at(start, PhotoParameter::gamma), options.saturated_level);
@@ -525,6 +574,7 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
                          StepRule::power_weighted_fringes);
     ConoscopeFitOptions geometry_held = options;
     for (std::size_t k = index_of(PhotoParameter::center_x_px); k <= index_of(PhotoParameter::azimuth_deg); ++k) geometry_held.free[k] = false;
+    geometry_held.free[index_of(PhotoParameter::distortion)] = geometry_held.free[index_of(PhotoParameter::analyzer_offset_deg)] = false;
     std::size_t best = 0;
     double best_scan_cost = std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < minima.size(); ++k) {

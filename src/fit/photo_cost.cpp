@@ -6,15 +6,21 @@
 namespace petroscope::detail {
 namespace {
 
-constexpr int kCenterX = static_cast<int>(PhotoParameter::center_x_px);
-constexpr int kTilt = static_cast<int>(PhotoParameter::tilt_deg);
-constexpr int kAzimuth = static_cast<int>(PhotoParameter::azimuth_deg);
 constexpr int kThickness = static_cast<int>(PhotoParameter::thickness_um);
 constexpr int kGainR = static_cast<int>(PhotoParameter::gain_r);
 constexpr int kBlack = static_cast<int>(PhotoParameter::black_level);
 constexpr int kGamma = static_cast<int>(PhotoParameter::gamma);
 constexpr int kBlur = static_cast<int>(PhotoParameter::blur_variance_px2);
-// Forward-difference steps: ξ (units of k₀) and orientation angles (degrees). Phases reach 10⁴ rad, so
+constexpr int kExtinction = static_cast<int>(PhotoParameter::extinction_ratio);
+constexpr int kEnvelopeX = static_cast<int>(PhotoParameter::envelope_center_x_px);
+// The parameters that change the figure's terms (the cache's key), and those of them whose derivative is
+// taken by evaluating the terms again (the others act through ξ).
+constexpr std::array<PhotoParameter, 8> kTermParameters{
+    PhotoParameter::center_x_px, PhotoParameter::center_y_px, PhotoParameter::field_radius_px, PhotoParameter::rotation_deg,
+    PhotoParameter::distortion,  PhotoParameter::tilt_deg,    PhotoParameter::azimuth_deg,     PhotoParameter::analyzer_offset_deg};
+constexpr std::array<PhotoParameter, 3> kReevaluatedParameters{PhotoParameter::tilt_deg, PhotoParameter::azimuth_deg,
+                                                               PhotoParameter::analyzer_offset_deg};
+// Forward-difference steps: ξ (units of k₀) and the angles of the crystal and analyzer (degrees). Phases reach 10⁴ rad, so
 // the truncation error ½f''h stays near 10⁻³ of f' at h = 10⁻⁶ while rounding (10⁻¹³/h) is negligible.
 constexpr double kXiStep = 1e-6;
 constexpr double kAngleStep = 1e-5;
@@ -59,24 +65,118 @@ PhotoCost::PhotoCost(const PhotoLevel& level, const PhotoParameterFlags& free, d
     mutable_parameter_block_sizes()->push_back(kPhotoParameterCount);
 }
 
-void PhotoCost::linear_at(const PhotoParameters& values, bool derivatives, LinearSamples& out) const {
-    std::array<double, 6> geometry;  // centre x, y, radius, rotation, tilt, azimuth
-    std::copy_n(values.begin() + kCenterX, 6, geometry.begin());
+void PhotoCost::unlit_at(const PhotoParameters& values, const std::vector<Eigen::Vector2d>& shifts, bool derivatives,
+                         LinearSamples& out) const {
+    std::array<double, kTermParameters.size()> geometry;
+    for (std::size_t j = 0; j < geometry.size(); ++j) geometry[j] = at(values, kTermParameters[j]);
     std::lock_guard lock(cache_mutex_);
     if (!cache_valid_ || geometry != cached_geometry_) {
-        level_.evaluator.terms(values, cached_terms_);
-        level_.evaluator.phase_derivatives(cached_terms_, cached_phase_);
+        level_.evaluator.analyzer_terms(values, free_[kExtinction], cached_terms_);
+        level_.evaluator.phase_derivatives(cached_terms_.passed, cached_phase_);
         cached_geometry_ = geometry;
         cache_valid_ = true;
     }
-    const double blur2 = values[kBlur] + level_.extra_blur_px * level_.extra_blur_px;
-    level_.evaluator.linear(cached_terms_, cached_phase_, values[kThickness], blur2, derivatives, out);
+    const double blur2 = total_blur2(values);
+    if (cached_terms_.blocked.empty()) {
+        level_.evaluator.linear(cached_terms_.passed, cached_phase_, values[kThickness], blur2, shifts, derivatives, out);
+        return;
+    }
+    leaked_terms(cached_terms_, values[kExtinction], leaked_);
+    level_.evaluator.linear(leaked_, cached_phase_, values[kThickness], blur2, shifts, derivatives, out);
+}
+
+double PhotoCost::total_blur2(const PhotoParameters& values) const {
+    return values[kBlur] + level_.extra_blur_px * level_.extra_blur_px;
 }
 
 std::vector<Eigen::Vector3d> PhotoCost::model_values(const PhotoParameters& values) const {
+    const std::vector<EnvelopeValue> envelope = level_.evaluator.envelope(values);
     LinearSamples linear;
-    linear_at(values, false, linear);
+    unlit_at(values, level_.evaluator.blur_shifts(envelope, total_blur2(values)), false, linear);
+    level_.evaluator.illuminate(envelope, linear);
     return camera_values(linear.rgb, values);
+}
+
+void PhotoCost::derivatives_at(const PhotoParameters& values, const std::vector<Eigen::Vector2d>& shifts, const LinearSamples& unlit,
+                               const std::vector<EnvelopeValue>& envelope,
+                               std::array<std::vector<Eigen::Vector3d>, kPhotoParameterCount>& d_linear) const {
+    const std::size_t samples = level_.evaluator.sample_count();
+    const double blur2 = total_blur2(values);
+    std::vector<InterferenceTerms> shifted;
+    LinearSamples moved;
+    // The unlit colour's change per unit of a change made to the figure's terms.
+    const auto difference = [&](double step) {
+        std::vector<Eigen::Vector3d> slope(samples);
+        for (std::size_t k = 0; k < samples; ++k) slope[k] = (moved.rgb[k] - unlit.rgb[k]) / step;
+        return slope;
+    };
+    // Centre, radius, rotation and distortion act through ξ: ∂/∂ξ by forward differences (two evaluations),
+    // with the phase's derivatives over the photo held; what moving ξ unevenly over the photo does to those
+    // (and so to the fringe blur) is added through ∂Φ/∂ξ.
+    const bool any_direction = std::any_of(kDirectionParameters.begin(), kDirectionParameters.end(),
+                                           [&](PhotoParameter p) { return free_[static_cast<std::size_t>(p)]; });
+    if (any_direction) {
+        const std::vector<InterferenceTerms>& seen = seen_terms();
+        std::array<std::vector<Eigen::Vector3d>, 2> d_xi;
+        std::array<std::vector<double>, 2> d_phase_d_xi;
+        for (std::size_t axis = 0; axis < 2; ++axis) {
+            level_.evaluator.terms(values, shifted, kXiStep * (axis == 0 ? Eigen::Vector2d::UnitX() : Eigen::Vector2d::UnitY()));
+            level_.evaluator.linear(shifted, cached_phase_, values[kThickness], blur2, shifts, false, moved);
+            d_xi[axis] = difference(kXiStep);
+            d_phase_d_xi[axis].resize(seen.size());
+            for (std::size_t i = 0; i < seen.size(); ++i) d_phase_d_xi[axis][i] = (shifted[i].phase_per_um - seen[i].phase_per_um) / kXiStep;
+        }
+        std::vector<std::array<Eigen::Vector2d, 5>> dxi(samples);
+        for (std::size_t k = 0; k < samples; ++k) dxi[k] = direction_derivatives(level_.evaluator.model(), values, level_.evaluator.lattice().pixels[k]);
+        const std::size_t w_count = level_.evaluator.wavelength_count();
+        std::vector<double> phase_change(seen.size());
+        std::vector<Eigen::Vector3d> through_blur;
+        for (std::size_t j = 0; j < kDirectionParameters.size(); ++j) {
+            std::vector<Eigen::Vector3d>& column = d_linear[static_cast<std::size_t>(kDirectionParameters[j])];
+            if (!free_[static_cast<std::size_t>(kDirectionParameters[j])]) continue;
+            column.resize(samples);
+            for (std::size_t k = 0; k < samples; ++k) {
+                column[k] = d_xi[0][k] * dxi[k][j].x() + d_xi[1][k] * dxi[k][j].y();
+                for (std::size_t i = k * w_count; i < (k + 1) * w_count; ++i) {
+                    phase_change[i] = d_phase_d_xi[0][i] * dxi[k][j].x() + d_phase_d_xi[1][i] * dxi[k][j].y();
+                }
+            }
+            level_.evaluator.blur_response(seen, cached_phase_, values[kThickness], blur2, shifts, phase_change, through_blur);
+            for (std::size_t k = 0; k < samples; ++k) column[k] += through_blur[k];
+        }
+    }
+    // Tilt, azimuth and the analyzer's offset change the terms themselves (and the phase's derivatives).
+    PhaseDerivatives moved_phase;
+    for (const PhotoParameter p : kReevaluatedParameters) {
+        const auto j = static_cast<std::size_t>(p);
+        if (!free_[j]) continue;
+        PhotoParameters turned = values;
+        turned[j] += kAngleStep;
+        level_.evaluator.terms(turned, shifted);
+        level_.evaluator.phase_derivatives(shifted, moved_phase);
+        level_.evaluator.linear(shifted, moved_phase, values[kThickness], blur2, shifts, false, moved);
+        d_linear[j] = difference(kAngleStep);
+    }
+    // The extinction ratio adds the blocked light: its derivative is that light.
+    if (free_[kExtinction]) {
+        level_.evaluator.linear(cached_terms_.blocked, cached_phase_, values[kThickness], blur2, shifts, false, moved);
+        d_linear[kExtinction] = moved.rgb;
+    }
+    // Everything so far is unlit: the envelope multiplies it, and its own parameters multiply the unlit colour.
+    for (std::size_t j = 0; j < kPhotoParameterCount; ++j) {
+        for (std::size_t k = 0; k < d_linear[j].size(); ++k) d_linear[j][k] *= envelope[k].value;
+    }
+    // The envelope's parameters also move where the blurred photo shows the figure: shift = σ²·∇ln E.
+    for (std::size_t e = 0; e < 4; ++e) {
+        const std::size_t j = kEnvelopeX + e;
+        if (!free_[j]) continue;
+        d_linear[j].resize(samples);
+        for (std::size_t k = 0; k < samples; ++k) {
+            const Eigen::Vector2d d_shift = blur2 * envelope[k].log_gradient_derivatives[e];
+            d_linear[j][k] = unlit.rgb[k] * envelope[k].derivatives[e] +
+                             envelope[k].value * (unlit.d_shift_x[k] * d_shift.x() + unlit.d_shift_y[k] * d_shift.y());
+        }
+    }
 }
 
 bool PhotoCost::Evaluate(double const* const* parameters, double* residuals, double** jacobians) const {
@@ -93,47 +193,26 @@ bool PhotoCost::Evaluate(double const* const* parameters, double* residuals, dou
             return true;
         }
     }
-    LinearSamples base;
-    linear_at(values, want_jacobian, base);
-    const std::size_t samples = level_.evaluator.sample_count();
-    const double c2 = robust_scale_ * robust_scale_;
-
-    // ∂(linear sRGB)/∂p for the geometry parameters, by forward differences: centre, radius and rotation
-    // through ∂/∂ξ (two evaluations), tilt and azimuth each on their own.
-    std::array<std::vector<Eigen::Vector3d>, 6> d_geometry;
+    const std::vector<EnvelopeValue> envelope = level_.evaluator.envelope(values);
+    const std::vector<Eigen::Vector2d> shifts = level_.evaluator.blur_shifts(envelope, total_blur2(values));
+    LinearSamples unlit;
+    unlit_at(values, shifts, want_jacobian, unlit);
+    std::array<std::vector<Eigen::Vector3d>, kPhotoParameterCount> d_linear;
     if (want_jacobian) {
-        std::vector<InterferenceTerms> shifted;
-        LinearSamples moved;
-        const double blur2 = values[kBlur] + level_.extra_blur_px * level_.extra_blur_px;
-        std::array<std::vector<Eigen::Vector3d>, 2> d_xi;
-        const bool any_direction = free_[kCenterX] || free_[kCenterX + 1] || free_[kCenterX + 2] || free_[kCenterX + 3];
-        for (int axis = 0; axis < 2 && any_direction; ++axis) {
-            level_.evaluator.terms(values, shifted, kXiStep * (axis == 0 ? Eigen::Vector2d::UnitX() : Eigen::Vector2d::UnitY()));
-            level_.evaluator.linear(shifted, cached_phase_, values[kThickness], blur2, false, moved);
-            d_xi[axis].resize(samples);
-            for (std::size_t k = 0; k < samples; ++k) d_xi[axis][k] = (moved.rgb[k] - base.rgb[k]) / kXiStep;
-        }
-        for (int j = 0; j < 4; ++j) {
-            if (free_[kCenterX + j]) d_geometry[j].resize(samples);
-        }
-        const double na = level_.evaluator.numerical_aperture();
-        for (std::size_t k = 0; k < samples && any_direction; ++k) {
-            const Eigen::Vector2d xi = pixel_direction(values, na, level_.evaluator.lattice().pixels[k]);
-            const std::array<Eigen::Vector2d, 4> dxi = direction_derivatives(values, na, xi);
-            for (int j = 0; j < 4; ++j) {
-                if (!d_geometry[j].empty()) d_geometry[j][k] = d_xi[0][k] * dxi[j].x() + d_xi[1][k] * dxi[j].y();
-            }
-        }
-        for (const int j : {kTilt, kAzimuth}) {
-            if (!free_[j]) continue;
-            PhotoParameters turned = values;
-            turned[j] += kAngleStep;
-            level_.evaluator.terms(turned, shifted);
-            level_.evaluator.linear(shifted, cached_phase_, values[kThickness], blur2, false, moved);
-            d_geometry[j - kCenterX].resize(samples);
-            for (std::size_t k = 0; k < samples; ++k) d_geometry[j - kCenterX][k] = (moved.rgb[k] - base.rgb[k]) / kAngleStep;
+        derivatives_at(values, shifts, unlit, envelope, d_linear);
+        // The blur moves the figure's sampling point too (shift = σ²·∇ln E).
+        for (std::size_t k = 0; k < shifts.size(); ++k) {
+            unlit.d_blur2[k] += unlit.d_shift_x[k] * envelope[k].log_gradient.x() + unlit.d_shift_y[k] * envelope[k].log_gradient.y();
         }
     }
+    LinearSamples base = std::move(unlit);
+    level_.evaluator.illuminate(envelope, base);
+    if (want_jacobian) {
+        d_linear[kThickness] = std::move(base.d_thickness);
+        d_linear[kBlur] = std::move(base.d_blur2);
+    }
+    const std::size_t samples = level_.evaluator.sample_count();
+    const double c2 = robust_scale_ * robust_scale_;
 
     for (std::size_t k = 0; k < samples; ++k) {
         for (int c = 0; c < 3; ++c) {
@@ -153,15 +232,12 @@ bool PhotoCost::Evaluate(double const* const* parameters, double* residuals, dou
             if (jacobian_row == nullptr) continue;
             const double chain = robust > 0.0 ? std::abs(r) / robust / (1.0 + s / c2) : 1.0;  // dr'/dr
             std::fill_n(jacobian_row, kPhotoParameterCount, 0.0);
-            const double d_linear = chain * camera.d_linear;
-            jacobian_row[kThickness] = d_linear * base.d_thickness[k][c];
-            for (int j = 0; j < 6; ++j) {
-                if (!d_geometry[j].empty()) jacobian_row[kCenterX + j] = d_linear * d_geometry[j][k][c];
+            for (std::size_t j = 0; j < kPhotoParameterCount; ++j) {
+                if (!d_linear[j].empty()) jacobian_row[j] = chain * camera.d_linear * d_linear[j][k][c];
             }
             jacobian_row[kGainR + c] = chain * camera.d_gain;
             jacobian_row[kBlack] = chain;
             jacobian_row[kGamma] = chain * camera.d_gamma;
-            jacobian_row[kBlur] = d_linear * base.d_blur2[k][c];
         }
     }
     // Ceres must never see a non-finite value (it would print every residual block and fail the solve): a

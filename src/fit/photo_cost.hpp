@@ -32,17 +32,27 @@ public:
     std::vector<Eigen::Vector3d> model_values(const PhotoParameters& values) const;
 
 private:
-    /// Linear sRGB of the samples, reusing the terms of the last geometry.
-    void linear_at(const PhotoParameters& values, bool derivatives, LinearSamples& out) const;
+    /// Linear sRGB of the samples before the illumination envelope, each figure taken `shifts` away (the
+    /// envelope's effect on the blur), reusing the terms of the last geometry.
+    void unlit_at(const PhotoParameters& values, const std::vector<Eigen::Vector2d>& shifts, bool derivatives, LinearSamples& out) const;
+    /// ∂(linear sRGB)/∂p of the geometry, analyzer and envelope parameters that are free (empty for the others).
+    void derivatives_at(const PhotoParameters& values, const std::vector<Eigen::Vector2d>& shifts, const LinearSamples& unlit,
+                        const std::vector<EnvelopeValue>& envelope, std::array<std::vector<Eigen::Vector3d>, kPhotoParameterCount>& d_linear) const;
+
+    /// The terms unlit_at used: the cached ones, leaked by the extinction ratio where the analyzer leaks.
+    const std::vector<InterferenceTerms>& seen_terms() const { return cached_terms_.blocked.empty() ? cached_terms_.passed : leaked_; }
+    /// The blur's σ² in the model: the parameter plus the level's extra blur of the photo.
+    double total_blur2(const PhotoParameters& values) const;
 
     const PhotoLevel& level_;
     PhotoParameterFlags free_;
     double robust_scale_;
     // The terms of the last geometry (the trust-region method evaluates each accepted point twice).
     mutable std::mutex cache_mutex_;
-    mutable std::array<double, 6> cached_geometry_{};
+    mutable std::array<double, 8> cached_geometry_{};
     mutable bool cache_valid_ = false;
-    mutable std::vector<InterferenceTerms> cached_terms_;
+    mutable AnalyzerTerms cached_terms_;
+    mutable std::vector<InterferenceTerms> leaked_;  // cached_terms_ leaked by the last extinction ratio
     mutable PhaseDerivatives cached_phase_;
     // The last evaluation's answer.
     mutable PhotoParameters last_values_{};

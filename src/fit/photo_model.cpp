@@ -49,110 +49,281 @@ SampleLattice sample_lattice(const Eigen::Vector2d& centre, double radius_px, in
     return lattice;
 }
 
-Eigen::Vector2d pixel_direction(const PhotoParameters& values, double numerical_aperture, const Eigen::Vector2d& pixel) {
-    const Eigen::Vector2d offset(pixel.x() - at(values, PhotoParameter::center_x_px), at(values, PhotoParameter::center_y_px) - pixel.y());
-    const double scale = numerical_aperture / at(values, PhotoParameter::field_radius_px);
-    return scale * rotated(offset, -at(values, PhotoParameter::rotation_deg) * kDegree);
+namespace {
+
+/// |ξ| at u field radii from the centre, and its derivatives by u and by the distortion.
+struct RadialMap {
+    double value, d_u, d_distortion;
+};
+
+RadialMap radial_map(const ConoscopePhotoModel& model, double distortion, double u) {
+    const double na = model.settings.numerical_aperture;  // below 1: the objective or lens is in air
+    const double v = u * (1.0 + distortion * u * u), dv_du = 1.0 + 3.0 * distortion * u * u, dv_dk = u * u * u;
+    // Past the fold of a barrel distortion the lens shows nothing of the figure: as beyond grazing, dark.
+    constexpr double kDark = 1.0;  // |ξ| = 1: grazing in air
+    if (dv_du <= 0.0) return {kDark, 0.0, 0.0};
+    double value = 0.0, slope = 0.0;  // |ξ| = sin θ_air and d|ξ|/dv
+    switch (model.projection) {
+    case Projection::sine:  // v ∝ sin θ: |ξ| = NA·v (Abbe's sine condition; Born & Wolf §4.5.1)
+        value = na * v;
+        slope = na;
+        break;
+    case Projection::tangent: {  // v ∝ tan θ: |ξ| = sin(atan(v tan θ_NA)) = w/√(1 + w²), w = v tan θ_NA
+        const double tan_edge = na / std::sqrt(1.0 - na * na);
+        const double w = v * tan_edge, root = std::sqrt(1.0 + w * w);
+        value = w / root;
+        slope = tan_edge / (root * root * root);
+        break;
+    }
+    case Projection::equidistant: {  // v ∝ θ: |ξ| = sin(v θ_NA), dark beyond θ = 90°
+        const double edge = std::asin(na), theta = v * edge;
+        if (theta >= 0.5 * std::numbers::pi) return {kDark, 0.0, 0.0};
+        value = std::sin(theta);
+        slope = std::cos(theta) * edge;
+        break;
+    }
+    }
+    return {value, slope * dv_du, slope * dv_dk};
 }
 
-std::array<Eigen::Vector2d, 4> direction_derivatives(const PhotoParameters& values, double numerical_aperture,
-                                                     const Eigen::Vector2d& xi) {
-    const double scale = numerical_aperture / at(values, PhotoParameter::field_radius_px);
+/// The pixel's offset from the centre in field radii, in the lab frame: R(−ρ)·(x − cx, cy − y)/r.
+Eigen::Vector2d lab_offset(const PhotoParameters& values, const Eigen::Vector2d& pixel) {
+    const Eigen::Vector2d offset(pixel.x() - at(values, PhotoParameter::center_x_px), at(values, PhotoParameter::center_y_px) - pixel.y());
+    return rotated(offset, -at(values, PhotoParameter::rotation_deg) * kDegree) / at(values, PhotoParameter::field_radius_px);
+}
+
+}  // namespace
+
+Eigen::Vector2d pixel_direction(const ConoscopePhotoModel& model, const PhotoParameters& values, const Eigen::Vector2d& pixel) {
+    const Eigen::Vector2d v = lab_offset(values, pixel);
+    const double u = v.norm();
+    const RadialMap map = radial_map(model, at(values, PhotoParameter::distortion), u);
+    return u > 0.0 ? Eigen::Vector2d(map.value / u * v) : Eigen::Vector2d::Zero();
+}
+
+std::array<Eigen::Vector2d, 5> direction_derivatives(const ConoscopePhotoModel& model, const PhotoParameters& values,
+                                                     const Eigen::Vector2d& pixel) {
+    const Eigen::Vector2d v = lab_offset(values, pixel);
+    const double u = v.norm(), radius = at(values, PhotoParameter::field_radius_px);
+    const RadialMap map = radial_map(model, at(values, PhotoParameter::distortion), u);
+    // ξ = S(u)/u · v: ∂ξ/∂v = (S/u)·I + (S' − S/u)·v̂v̂ᵀ (at u = 0, S'·I).
+    const double ratio = u > 1e-12 ? map.value / u : map.d_u;
+    const Eigen::Vector2d unit = u > 1e-12 ? Eigen::Vector2d(v / u) : Eigen::Vector2d::Zero();
+    const Eigen::Matrix2d d_xi_d_v = ratio * Eigen::Matrix2d::Identity() + (map.d_u - ratio) * unit * unit.transpose();
     const double angle = -at(values, PhotoParameter::rotation_deg) * kDegree;
-    // ξ = s·R(−ρ)·(x − cx, cy − y): ∂ξ/∂cx = −s·R(−ρ)x̂, ∂ξ/∂cy = s·R(−ρ)ŷ, ∂ξ/∂r = −ξ/r,
-    // ∂ξ/∂ρ = (ξ_y, −ξ_x) per radian.
-    return {-scale * rotated(Eigen::Vector2d::UnitX(), angle), scale * rotated(Eigen::Vector2d::UnitY(), angle),
-            -xi / at(values, PhotoParameter::field_radius_px), kDegree * Eigen::Vector2d(xi.y(), -xi.x())};
+    // v = R(−ρ)·(x − cx, cy − y)/r: ∂v/∂cx = −R(−ρ)x̂/r, ∂v/∂cy = R(−ρ)ŷ/r, ∂v/∂r = −v/r, ∂v/∂ρ = (v_y, −v_x) per radian.
+    return {d_xi_d_v * (-rotated(Eigen::Vector2d::UnitX(), angle) / radius), d_xi_d_v * (rotated(Eigen::Vector2d::UnitY(), angle) / radius),
+            d_xi_d_v * (-v / radius), d_xi_d_v * (kDegree * Eigen::Vector2d(v.y(), -v.x())), map.d_distortion * unit};
+}
+
+EnvelopeValue illumination_envelope(const ConoscopePhotoModel& model, const PhotoParameters& values, const Eigen::Vector2d& pixel) {
+    if (model.illumination == IlluminationProfile::even) return {};
+    const Eigen::Vector2d offset = pixel - Eigen::Vector2d(at(values, PhotoParameter::envelope_center_x_px), at(values, PhotoParameter::envelope_center_y_px));
+    const double radius = at(values, PhotoParameter::envelope_radius_px), power = at(values, PhotoParameter::envelope_power);
+    // E = exp(−s), s = (r/R)^p = (r²/R²)^(p/2); ∇s = a·(pixel − c) with a = p·(r²)^(p/2 − 1)/R^p, finite at r = 0
+    // for p ≥ 2; ∂s/∂c = −∇s, ∂s/∂R = −p·s/R, ∂s/∂p = s·ln(r/R).
+    const double r2 = offset.squaredNorm(), s = std::pow(r2 / (radius * radius), 0.5 * power);
+    const double value = std::exp(-s);
+    const double a = power * std::pow(r2, 0.5 * power - 1.0) / std::pow(radius, power);
+    const double log_ratio = s > 0.0 ? 0.5 * std::log(r2 / (radius * radius)) : 0.0;
+    EnvelopeValue result;
+    result.value = value;
+    result.derivatives = {value * a * offset.x(), value * a * offset.y(), value * power * s / radius, -value * s * log_ratio};
+    // g = ∇ln E = −a·o (o = pixel − c); ∂a/∂c_x = −a·(p − 2)·o_x/r², ∂a/∂R = −p·a/R, ∂a/∂p = a·(1/p + ln(r/R)).
+    result.log_gradient = -a * offset;
+    const Eigen::Vector2d radial = r2 > 0.0 ? Eigen::Vector2d(a * (power - 2.0) / r2 * offset) : Eigen::Vector2d::Zero();
+    result.log_gradient_derivatives = {radial.x() * offset + a * Eigen::Vector2d::UnitX(), radial.y() * offset + a * Eigen::Vector2d::UnitY(),
+                                       power * a / radius * offset, -a * (1.0 / power + log_ratio) * offset};
+    return result;
+}
+
+void leaked_terms(const AnalyzerTerms& terms, double extinction_ratio, std::vector<InterferenceTerms>& out) {
+    out = terms.passed;
+    if (terms.blocked.empty()) return;
+    for (std::size_t k = 0; k < out.size(); ++k) {
+        out[k].mean += extinction_ratio * terms.blocked[k].mean;
+        out[k].modulation += extinction_ratio * terms.blocked[k].modulation;
+        out[k].sine_modulation += extinction_ratio * terms.blocked[k].sine_modulation;
+    }
 }
 
 PhotoModelEvaluator::PhotoModelEvaluator(const ConoscopePhotoModel& model, SampleLattice lattice)
     : model_(model), lattice_(std::move(lattice)) {}
 
-void PhotoModelEvaluator::terms(const PhotoParameters& values, std::vector<InterferenceTerms>& out,
-                                const Eigen::Vector2d& xi_offset) const {
+void PhotoModelEvaluator::analyzer_terms(const PhotoParameters& values, bool with_blocked, AnalyzerTerms& out,
+                                         const Eigen::Vector2d& xi_offset) const {
     ConoscopeSettings settings = model_.settings;
     settings.crystal_axes = model_.orientation(at(values, PhotoParameter::tilt_deg), at(values, PhotoParameter::azimuth_deg));
-    const ConoscopeTerms figure(settings, model_.principal_n);
+    settings.analyzer_deg += at(values, PhotoParameter::analyzer_offset_deg);
     std::vector<Eigen::Vector2d> xis(sample_count());
-    for (std::size_t k = 0; k < xis.size(); ++k) {
-        xis[k] = pixel_direction(values, settings.numerical_aperture, lattice_.pixels[k]) + xi_offset;
+    for (std::size_t k = 0; k < xis.size(); ++k) xis[k] = pixel_direction(model_, values, lattice_.pixels[k]) + xi_offset;
+    ConoscopeTerms(settings, model_.principal_n).evaluate(xis, out.passed);
+    out.blocked.clear();
+    if (with_blocked || at(values, PhotoParameter::extinction_ratio) != 0.0) {
+        settings.analyzer_deg += 90.0;
+        ConoscopeTerms(settings, model_.principal_n).evaluate(xis, out.blocked);
     }
-    figure.evaluate(xis, out);
-    // A geometry far from the photo's (a small field, a centre off the image) maps samples beyond grazing
-    // in the immersion, |ξ| ≥ n, where no wave propagates and the kernel's terms are undefined: no light.
+    // No light reaches the objective (in air) from beyond grazing, |ξ| ≥ 1: where a projection shows no
+    // direction, and where a geometry far from the photo's (a small field, a centre off the image) maps
+    // samples (beyond |ξ| ≥ n of the immersion no wave propagates and the kernel's terms are undefined).
     const std::size_t w_count = wavelength_count();
     for (std::size_t k = 0; k < xis.size(); ++k) {
-        if (xis[k].norm() >= settings.surround_n) std::fill_n(out.begin() + static_cast<std::ptrdiff_t>(k * w_count), w_count, InterferenceTerms{});
-    }
-}
-
-void PhotoModelEvaluator::phase_derivatives(const std::vector<InterferenceTerms>& terms, PhaseDerivatives& out) const {
-    const std::size_t w_count = wavelength_count();
-    out.gradient2.assign(terms.size(), 0.0);
-    out.laplacian.assign(terms.size(), 0.0);
-    const int samples = static_cast<int>(sample_count());
-    const double stride = lattice_.stride_px;
-#pragma omp parallel for schedule(static)
-    for (int k = 0; k < samples; ++k) {
-        const std::array<int, 4>& n = lattice_.neighbours[static_cast<std::size_t>(k)];
-        const auto phase = [&](int sample, std::size_t w) { return terms[static_cast<std::size_t>(sample) * w_count + w].phase_per_um; };
-        for (std::size_t w = 0; w < w_count; ++w) {
-            const double centre = phase(k, w);
-            double gradient2 = 0.0, laplacian = 0.0;
-            bool interior = true;
-            for (int axis = 0; axis < 2; ++axis) {
-                const int minus = n[2 * axis], plus = n[2 * axis + 1];
-                const double low = minus >= 0 ? phase(minus, w) : centre, high = plus >= 0 ? phase(plus, w) : centre;
-                const int span = (minus >= 0 ? 1 : 0) + (plus >= 0 ? 1 : 0);
-                const double slope = span > 0 ? (high - low) / (span * stride) : 0.0;
-                gradient2 += slope * slope;
-                interior = interior && span == 2;
-                laplacian += (high - 2.0 * centre + low) / (stride * stride);
-            }
-            out.gradient2[static_cast<std::size_t>(k) * w_count + w] = gradient2;
-            out.laplacian[static_cast<std::size_t>(k) * w_count + w] = interior ? laplacian : 0.0;
+        if (xis[k].norm() < 1.0) continue;
+        for (std::vector<InterferenceTerms>* part : {&out.passed, &out.blocked}) {
+            if (!part->empty()) std::fill_n(part->begin() + static_cast<std::ptrdiff_t>(k * w_count), w_count, InterferenceTerms{});
         }
     }
 }
 
+void PhotoModelEvaluator::terms(const PhotoParameters& values, std::vector<InterferenceTerms>& out, const Eigen::Vector2d& xi_offset) const {
+    AnalyzerTerms parts;
+    analyzer_terms(values, false, parts, xi_offset);
+    leaked_terms(parts, at(values, PhotoParameter::extinction_ratio), out);
+}
+
+std::vector<EnvelopeValue> PhotoModelEvaluator::envelope(const PhotoParameters& values) const {
+    std::vector<EnvelopeValue> result(sample_count());
+    for (std::size_t k = 0; k < result.size(); ++k) result[k] = illumination_envelope(model_, values, lattice_.pixels[k]);
+    return result;
+}
+
+void PhotoModelEvaluator::illuminate(const std::vector<EnvelopeValue>& envelope, LinearSamples& samples) const {
+    if (model_.illumination == IlluminationProfile::even) return;
+    for (std::size_t k = 0; k < samples.rgb.size(); ++k) {
+        samples.rgb[k] *= envelope[k].value;
+        if (!samples.d_thickness.empty()) samples.d_thickness[k] *= envelope[k].value;
+        if (!samples.d_blur2.empty()) samples.d_blur2[k] *= envelope[k].value;
+    }
+}
+
+std::vector<Eigen::Vector2d> PhotoModelEvaluator::blur_shifts(const std::vector<EnvelopeValue>& envelope, double blur2_px2) const {
+    if (model_.illumination == IlluminationProfile::even) return {};
+    std::vector<Eigen::Vector2d> shifts(envelope.size());
+    for (std::size_t k = 0; k < shifts.size(); ++k) shifts[k] = blur2_px2 * envelope[k].log_gradient;
+    return shifts;
+}
+
+namespace {
+
+/// The gradient (central differences; one-sided at the lattice's edge) and Laplacian (interior only) over
+/// the lattice of field(sample·W + w), per pixel.
+template <typename Field>
+void lattice_derivatives(const SampleLattice& lattice, std::size_t w_count, const Field& field, PhaseDerivatives& out) {
+    const std::size_t size = lattice.pixels.size() * w_count;
+    out.gradient_x.assign(size, 0.0);
+    out.gradient_y.assign(size, 0.0);
+    out.laplacian.assign(size, 0.0);
+    const int samples = static_cast<int>(lattice.pixels.size());
+    const double stride = lattice.stride_px;
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < samples; ++k) {
+        const std::array<int, 4>& n = lattice.neighbours[static_cast<std::size_t>(k)];
+        const auto value = [&](int sample, std::size_t w) { return field(static_cast<std::size_t>(sample) * w_count + w); };
+        for (std::size_t w = 0; w < w_count; ++w) {
+            const double centre = value(k, w);
+            std::array<double, 2> slopes{};
+            double laplacian = 0.0;
+            bool interior = true;
+            for (int axis = 0; axis < 2; ++axis) {
+                const int minus = n[2 * axis], plus = n[2 * axis + 1];
+                const double low = minus >= 0 ? value(minus, w) : centre, high = plus >= 0 ? value(plus, w) : centre;
+                const int span = (minus >= 0 ? 1 : 0) + (plus >= 0 ? 1 : 0);
+                slopes[static_cast<std::size_t>(axis)] = span > 0 ? (high - low) / (span * stride) : 0.0;
+                interior = interior && span == 2;
+                laplacian += (high - 2.0 * centre + low) / (stride * stride);
+            }
+            const std::size_t i = static_cast<std::size_t>(k) * w_count + w;
+            out.gradient_x[i] = slopes[0];
+            out.gradient_y[i] = slopes[1];
+            out.laplacian[i] = interior ? laplacian : 0.0;
+        }
+    }
+}
+
+}  // namespace
+
+void PhotoModelEvaluator::phase_derivatives(const std::vector<InterferenceTerms>& terms, PhaseDerivatives& out) const {
+    lattice_derivatives(lattice_, wavelength_count(), [&terms](std::size_t i) { return terms[i].phase_per_um; }, out);
+}
+
+void PhotoModelEvaluator::blur_response(const std::vector<InterferenceTerms>& terms, const PhaseDerivatives& phase, double thickness_um,
+                                        double blur2_px2, const std::vector<Eigen::Vector2d>& shifts, const std::vector<double>& phase_change,
+                                        std::vector<Eigen::Vector3d>& out) const {
+    PhaseDerivatives change;
+    lattice_derivatives(lattice_, wavelength_count(), [&phase_change](std::size_t i) { return phase_change[i]; }, change);
+    const std::size_t w_count = wavelength_count();
+    const int samples = static_cast<int>(sample_count());
+    const double d = thickness_um, d2 = thickness_um * thickness_um;
+    out.assign(sample_count(), Eigen::Vector3d::Zero());
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < samples; ++k) {
+        const auto i = static_cast<std::size_t>(k);
+        const Eigen::Vector2d shift = shifts.empty() ? Eigen::Vector2d::Zero() : shifts[i];
+        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+        for (std::size_t w = 0, j = i * w_count; w < w_count; ++w, ++j) {
+            const InterferenceTerms& t = terms[j];
+            const double gx = phase.gradient_x[j], gy = phase.gradient_y[j];
+            const double attenuation = std::exp(-0.5 * blur2_px2 * d2 * (gx * gx + gy * gy));
+            const double rate = t.phase_per_um + 0.5 * blur2_px2 * phase.laplacian[j] + gx * shift.x() + gy * shift.y();
+            const double cosine = std::cos(rate * d), sine = std::sin(rate * d);
+            const double fringe = t.modulation * attenuation, sine_fringe = t.sine_modulation * attenuation;
+            const double fringes = fringe * cosine + sine_fringe * sine, per_phase = -fringe * sine + sine_fringe * cosine;
+            // T = mean + fringes(attenuation(∇Φ), phase(∇Φ, ∇²Φ)): ∂T/∂∇Φ = −σ²d²∇Φ·fringes + d·shift·per_phase,
+            // ∂T/∂∇²Φ = ½σ²d·per_phase.
+            const double dgx = change.gradient_x[j], dgy = change.gradient_y[j];
+            const double response = -blur2_px2 * d2 * (gx * dgx + gy * dgy) * fringes +
+                                    d * (0.5 * blur2_px2 * change.laplacian[j] + shift.x() * dgx + shift.y() * dgy) * per_phase;
+            sum += model_.rgb_per_transmission[w] * response;
+        }
+        out[i] = sum;
+    }
+}
+
 void PhotoModelEvaluator::linear(const std::vector<InterferenceTerms>& terms, const PhaseDerivatives& phase_derivatives,
-                                 double thickness_um, double blur2_px2, bool derivatives, LinearSamples& out) const {
+                                 double thickness_um, double blur2_px2, const std::vector<Eigen::Vector2d>& shifts, bool derivatives,
+                                 LinearSamples& out) const {
     const std::size_t w_count = wavelength_count();
     const int samples = static_cast<int>(sample_count());
     out.rgb.resize(sample_count());
     if (derivatives) {
-        out.d_thickness.resize(sample_count());
-        out.d_blur2.resize(sample_count());
+        for (std::vector<Eigen::Vector3d>* d : {&out.d_thickness, &out.d_blur2, &out.d_shift_x, &out.d_shift_y}) d->resize(sample_count());
     }
     const double d2 = thickness_um * thickness_um;
 #pragma omp parallel for schedule(static)
     for (int k = 0; k < samples; ++k) {
         Eigen::Vector3d rgb = Eigen::Vector3d::Zero(), d_thickness = Eigen::Vector3d::Zero(), d_blur2 = Eigen::Vector3d::Zero();
-        const std::size_t first = static_cast<std::size_t>(k) * w_count;
+        Eigen::Vector3d d_shift_x = Eigen::Vector3d::Zero(), d_shift_y = Eigen::Vector3d::Zero();
+        const auto i = static_cast<std::size_t>(k);
+        const std::size_t first = i * w_count;
+        const Eigen::Vector2d shift = shifts.empty() ? Eigen::Vector2d::Zero() : shifts[i];
         for (std::size_t w = 0; w < w_count; ++w) {
             const InterferenceTerms& t = terms[first + w];
-            const double g2 = phase_derivatives.gradient2[first + w];
+            const double gx = phase_derivatives.gradient_x[first + w], gy = phase_derivatives.gradient_y[first + w];
+            const double g2 = gx * gx + gy * gy;
             const double half_laplacian = 0.5 * phase_derivatives.laplacian[first + w];
             const double attenuation = std::exp(-0.5 * blur2_px2 * d2 * g2);
-            const double rate = t.phase_per_um + blur2_px2 * half_laplacian;  // ∂phase/∂d
+            const double rate = t.phase_per_um + blur2_px2 * half_laplacian + gx * shift.x() + gy * shift.y();  // ∂phase/∂d
             const double phase = rate * thickness_um;
             const double cosine = std::cos(phase), sine = std::sin(phase);
             // The cosine fringe and, for an optically active crystal, the sine one (InterferenceTerms).
             const double fringe = t.modulation * attenuation, sine_fringe = t.sine_modulation * attenuation;
-            rgb += model_.rgb_per_transmission[w] * (t.mean + fringe * cosine + sine_fringe * sine);
-            if (derivatives) {
-                const double damping = blur2_px2 * thickness_um * g2;  // −∂(ln attenuation)/∂d
-                const double dt = -fringe * (sine * rate + cosine * damping) + sine_fringe * (cosine * rate - sine * damping);
-                d_thickness += model_.rgb_per_transmission[w] * dt;
-                const double shift = half_laplacian * thickness_um;  // ∂phase/∂blur²
-                d_blur2 += model_.rgb_per_transmission[w] * (-fringe * (0.5 * d2 * g2 * cosine + sine * shift) +
-                                                             sine_fringe * (cosine * shift - 0.5 * d2 * g2 * sine));
-            }
+            const double fringes = fringe * cosine + sine_fringe * sine;
+            rgb += model_.rgb_per_transmission[w] * (t.mean + fringes);
+            if (!derivatives) continue;
+            const double per_phase = -fringe * sine + sine_fringe * cosine;  // ∂(fringes)/∂phase
+            const double damping = blur2_px2 * thickness_um * g2;            // −∂(ln attenuation)/∂d
+            d_thickness += model_.rgb_per_transmission[w] * (per_phase * rate - fringes * damping);
+            // ∂/∂blur² through the Laplacian's phase shift and the attenuation (the shifts' own part: the caller's).
+            d_blur2 += model_.rgb_per_transmission[w] * (per_phase * half_laplacian * thickness_um - 0.5 * d2 * g2 * fringes);
+            d_shift_x += model_.rgb_per_transmission[w] * (per_phase * thickness_um * gx);
+            d_shift_y += model_.rgb_per_transmission[w] * (per_phase * thickness_um * gy);
         }
-        out.rgb[static_cast<std::size_t>(k)] = rgb;
+        out.rgb[i] = rgb;
         if (derivatives) {
-            out.d_thickness[static_cast<std::size_t>(k)] = d_thickness;
-            out.d_blur2[static_cast<std::size_t>(k)] = d_blur2;
+            out.d_thickness[i] = d_thickness;
+            out.d_blur2[i] = d_blur2;
+            out.d_shift_x[i] = d_shift_x;
+            out.d_shift_y[i] = d_shift_y;
         }
     }
 }
@@ -208,8 +379,10 @@ Image gaussian_blur(const Image& image, double sigma_px) {
 PhotoBounds photo_parameter_bounds(double thickness_min_um, double thickness_max_um, int width_px, int height_px) {
     const double size = std::max(width_px, height_px);
     PhotoBounds b;
-    b.lower = {0.5 * thickness_min_um, -size, -size, 0.05 * size, -360.0, -89.0, -720.0, 1e-3, 1e-3, 1e-3, -0.5, 0.5, 0.0};
-    b.upper = {2.0 * thickness_max_um, 2.0 * size, 2.0 * size, 5.0 * size, 360.0, 89.0, 720.0, 1e3, 1e3, 1e3, 0.9, 5.0, 2500.0};
+    b.lower = {0.5 * thickness_min_um, -size, -size, 0.05 * size, -360.0, -89.0, -720.0, 1e-3, 1e-3, 1e-3, -0.5, 0.5, 0.0,
+               -size, -size, 0.05 * size, 2.0, -0.3, -45.0, 0.0};
+    b.upper = {2.0 * thickness_max_um, 2.0 * size, 2.0 * size, 5.0 * size, 360.0, 89.0, 720.0, 1e3, 1e3, 1e3, 0.9, 5.0, 2500.0,
+               2.0 * size, 2.0 * size, 100.0 * size, 40.0, 0.3, 45.0, 0.2};
     return b;
 }
 

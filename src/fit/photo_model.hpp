@@ -28,27 +28,59 @@ struct PhotoBounds {
 };
 
 /// For a photo of `width_px` × `height_px` and a thickness search over [thickness_min_um, thickness_max_um]:
-/// thickness within half the minimum and twice the maximum, centre within the image's size outside it,
+/// thickness within half the minimum and twice the maximum, centres within the image's size outside it,
 /// field radius 0.05–5 sizes, rotation ±360°, tilt ±89°, azimuth ±720°, gains 1e-3–1e3, black level
-/// −0.5–0.9, gamma 0.5–5, blur variance 0–2500 px².
+/// −0.5–0.9, gamma 0.5–5, blur variance 0–2500 px², envelope radius 0.05–100 sizes and power 2–40,
+/// distortion ±0.3, analyzer offset ±45°, extinction ratio 0–0.2.
 PhotoBounds photo_parameter_bounds(double thickness_min_um, double thickness_max_um, int width_px, int height_px);
 
 /// ξ (units of k₀) of the light shown at `pixel` for the geometry of `values`: the pixel's offset from
-/// the centre, y flipped to point N, turned by −rotation back into the lab, times NA / field radius.
-Eigen::Vector2d pixel_direction(const PhotoParameters& values, double numerical_aperture, const Eigen::Vector2d& pixel);
+/// the centre, y flipped to point N, turned by −rotation back into the lab; its length u in field radii,
+/// distorted to u·(1 + distortion·u²), is projected to |ξ| = sin θ_air as model.projection says, so that
+/// |ξ| = NA at the field radius (docs/fitting.md, "The model"); |ξ| = 1 (grazing, dark) where the
+/// projection shows no direction.
+Eigen::Vector2d pixel_direction(const ConoscopePhotoModel& model, const PhotoParameters& values, const Eigen::Vector2d& pixel);
 
-/// ∂ξ/∂p for p = centre x, centre y, field radius, rotation (per pixel, pixel, pixel, degree) at ξ.
-std::array<Eigen::Vector2d, 4> direction_derivatives(const PhotoParameters& values, double numerical_aperture,
-                                                     const Eigen::Vector2d& xi);
+/// The parameters that act on the photo only through ξ, in the order of direction_derivatives.
+constexpr std::array<PhotoParameter, 5> kDirectionParameters{PhotoParameter::center_x_px, PhotoParameter::center_y_px,
+                                                             PhotoParameter::field_radius_px, PhotoParameter::rotation_deg,
+                                                             PhotoParameter::distortion};
 
-/// [sample·W + w]: the phase's squared gradient and Laplacian over the photo.
-struct PhaseDerivatives {
-    std::vector<double> gradient2, laplacian;
+/// ∂ξ/∂p at `pixel` for the kDirectionParameters (per pixel, pixel, pixel, degree, unit).
+std::array<Eigen::Vector2d, 5> direction_derivatives(const ConoscopePhotoModel& model, const PhotoParameters& values,
+                                                     const Eigen::Vector2d& pixel);
+
+/// The light at `pixel` relative to the envelope's centre: exp(−(r/R)^p) for IlluminationProfile::falloff
+/// (1 for even), and its derivatives by envelope centre x, y, radius and power; its log's gradient over the
+/// photo g = ∇ln E (per pixel, x right, y down) and g's derivatives by the same four.
+struct EnvelopeValue {
+    double value = 1.0;
+    std::array<double, 4> derivatives{};
+    Eigen::Vector2d log_gradient = Eigen::Vector2d::Zero();
+    std::array<Eigen::Vector2d, 4> log_gradient_derivatives{Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(),
+                                                           Eigen::Vector2d::Zero()};
+};
+EnvelopeValue illumination_envelope(const ConoscopePhotoModel& model, const PhotoParameters& values, const Eigen::Vector2d& pixel);
+
+/// The figure's terms through the analyzer as set (turned by analyzer_offset_deg), and through the analyzer
+/// turned a further 90° (the light it blocks, of which a leaking analyzer passes extinction_ratio); the
+/// second is empty unless asked for. Both have the same phases: the modes do not depend on the analyzer.
+struct AnalyzerTerms {
+    std::vector<InterferenceTerms> passed, blocked;
 };
 
-/// Linear sRGB of every sample, and optionally its derivatives by thickness and by the blur's σ².
+/// passed + extinction_ratio · blocked (passed alone when blocked is empty).
+void leaked_terms(const AnalyzerTerms& terms, double extinction_ratio, std::vector<InterferenceTerms>& out);
+
+/// [sample·W + w]: the phase's gradient (x right, y down) and Laplacian over the photo.
+struct PhaseDerivatives {
+    std::vector<double> gradient_x, gradient_y, laplacian;
+};
+
+/// Linear sRGB of every sample, and optionally its derivatives by thickness, by the blur's σ² and by the
+/// point where the figure is sampled (d_shift_x, d_shift_y: per pixel).
 struct LinearSamples {
-    std::vector<Eigen::Vector3d> rgb, d_thickness, d_blur2;
+    std::vector<Eigen::Vector3d> rgb, d_thickness, d_blur2, d_shift_x, d_shift_y;
 };
 
 class PhotoModelEvaluator {
@@ -56,14 +88,24 @@ public:
     PhotoModelEvaluator(const ConoscopePhotoModel& model, SampleLattice lattice);
 
     const SampleLattice& lattice() const { return lattice_; }
+    const ConoscopePhotoModel& model() const { return model_; }
     std::size_t sample_count() const { return lattice_.pixels.size(); }
     std::size_t wavelength_count() const { return model_.rgb_per_transmission.size(); }
     double numerical_aperture() const { return model_.settings.numerical_aperture; }
 
     /// The interference terms of every sample at every wavelength, out[sample·W + w], for the geometry
-    /// (centre, radius, rotation, tilt, azimuth) of `values`, each ξ moved by `xi_offset` (for ∂/∂ξ).
+    /// (centre, radius, rotation, distortion, tilt, azimuth) and the analyzer of `values`, each ξ moved by
+    /// `xi_offset` (for ∂/∂ξ). The blocked terms are computed when `with_blocked` or the analyzer leaks.
+    void analyzer_terms(const PhotoParameters& values, bool with_blocked, AnalyzerTerms& out,
+                        const Eigen::Vector2d& xi_offset = Eigen::Vector2d::Zero()) const;
+    /// The terms of what reaches the camera: analyzer_terms leaked by the extinction ratio.
     void terms(const PhotoParameters& values, std::vector<InterferenceTerms>& out,
                const Eigen::Vector2d& xi_offset = Eigen::Vector2d::Zero()) const;
+
+    /// The illumination envelope at every sample.
+    std::vector<EnvelopeValue> envelope(const PhotoParameters& values) const;
+    /// Multiplies linear sRGB (and its derivatives, where computed) by the envelope.
+    void illuminate(const std::vector<EnvelopeValue>& envelope, LinearSamples& samples) const;
 
     /// The squared gradient |∇Φ|² (rad/µm/px)² and the Laplacian ∇²Φ (rad/µm/px²) of each phase over the
     /// photo, from the lattice neighbours (central differences; one-sided, and no Laplacian, at the edge).
@@ -71,9 +113,23 @@ public:
 
     /// Linear sRGB at `thickness_um` with Gaussian blur of variance `blur2_px2`. The blur of a fringe
     /// cos φ whose phase is locally quadratic is exp(−½σ²|∇φ|²)·cos(φ + ½σ²∇²φ) to first order in σ²
-    /// (docs/fitting.md), with φ = Φ·d.
-    void linear(const std::vector<InterferenceTerms>& terms, const PhaseDerivatives& phase, double thickness_um,
-                double blur2_px2, bool derivatives, LinearSamples& out) const;
+    /// (docs/fitting.md), with φ = Φ·d. Each sample's figure is taken `shifts[k]` pixels away (empty: none),
+    /// through its phase's gradient: φ + d·∇Φ·shift (blur_shifts).
+    void linear(const std::vector<InterferenceTerms>& terms, const PhaseDerivatives& phase, double thickness_um, double blur2_px2,
+                const std::vector<Eigen::Vector2d>& shifts, bool derivatives, LinearSamples& out) const;
+
+    /// What a change `phase_change[sample·W + w]` of every phase does to the linear sRGB through the fringe
+    /// blur alone: the change of the phase's gradient and Laplacian over the photo (phase_derivatives'
+    /// stencil) times ∂(transmission)/∂ of each, summed over the wavelengths. A parameter that moves ξ by
+    /// different amounts at different samples (the field radius, the rotation, the distortion, the centre of
+    /// a projection other than the sine) changes them.
+    void blur_response(const std::vector<InterferenceTerms>& terms, const PhaseDerivatives& phase, double thickness_um, double blur2_px2,
+                       const std::vector<Eigen::Vector2d>& shifts, const std::vector<double>& phase_change,
+                       std::vector<Eigen::Vector3d>& out) const;
+
+    /// Where a blurred photo of light E·F shows the figure F: blur(E·F) = E·blur(F)(p + σ²∇ln E) to first
+    /// order in σ² (Taylor expansion under the Gaussian), so σ²·∇ln E per sample; empty for even light.
+    std::vector<Eigen::Vector2d> blur_shifts(const std::vector<EnvelopeValue>& envelope, double blur2_px2) const;
 
 private:
     const ConoscopePhotoModel& model_;

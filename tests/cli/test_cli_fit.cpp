@@ -88,6 +88,12 @@ TEST_F(FitCli, BadPhotosAndOptionsAreRefused) {
     expect_rejected("fit conoscope --photo " + testing::quoted(photo) + tail + " --fix scale=3", {"--fix", "scale", "field_radius_px"});
     expect_rejected("fit conoscope --photo " + testing::quoted(photo) + tail + " --fix gamma", {"--fix", "NAME=VALUE"});
     expect_rejected("fit conoscope --photo " + testing::quoted(photo) + tail + " --handedness sideways", {"--handedness", "'sideways'", "expected right or left"});
+    expect_rejected("fit conoscope --photo " + testing::quoted(photo) + tail + " --projection fisheye",
+                    {"--projection", "'fisheye'", "sine, tangent, equidistant"});
+    expect_rejected("fit conoscope --photo " + testing::quoted(photo) + tail + " --field-stop soft", {"--field-stop", "'soft'", "sharp, none"});
+    expect_rejected("fit conoscope --photo " + testing::quoted(photo) + tail + " --illumination dim", {"--illumination", "'dim'", "even, falloff"});
+    expect_rejected("fit conoscope --photo " + testing::quoted(photo) + tail + " --free thickness,envelope",
+                    {"--free", "envelope_center_x_px", "illumination is even", "falloff"});
     expect_rejected("fit conoscope --photo " + testing::quoted(photo) + " --mineral quartz --thickness-range 5mm:1mm -o " + testing::quoted(out()),
                     {"--thickness-range", "maximum"});
 }

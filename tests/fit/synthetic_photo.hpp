@@ -62,6 +62,14 @@ inline ConoscopePhotoModel photo_model(const Mineral& mineral, Cut cut) {
     return conoscope_photo_model(mineral, setup);
 }
 
+/// The parameters a photo through a microscope leaves unknown: thickness … blur. The terms of other optics
+/// (the envelope, the distortion, the analyzer's offset and leak) stay at their neutral values.
+inline PhotoParameterFlags microscope_unknowns() {
+    PhotoParameterFlags free{};
+    for (std::size_t j = 0; j <= static_cast<std::size_t>(PhotoParameter::blur_variance_px2); ++j) free[j] = true;
+    return free;
+}
+
 /// What a camera makes of linear RGB (CV_64FC3, channels R, G, B): `tone` per channel, Gaussian noise of
 /// σ = `noise`, 8-bit quantisation and JPEG at `jpeg_quality` (0: none); camera values 0 … 1. The JPEG
 /// file's bytes go to `jpeg_file` when given.

@@ -10,7 +10,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 
 namespace petroscope {
@@ -63,7 +65,7 @@ Fitted fit_synthetic(const FitCase& c, int size_px, const std::function<Image(co
     at(options.initial, PhotoParameter::tilt_deg) = c.tilt_deg;  // the orientation is known
     options.thickness_min_um = start_um / 3.0;
     options.thickness_max_um = start_um * 3.0;
-    options.free.fill(true);
+    options.free = testing::microscope_unknowns();
     options.free[static_cast<std::size_t>(PhotoParameter::tilt_deg)] = false;
     options.free[static_cast<std::size_t>(PhotoParameter::azimuth_deg)] = false;
     if (c.fix_scale) {
@@ -142,10 +144,23 @@ TEST(ConoscopeFit, CentredUniaxialScaleFreeIsUnidentified) {
     const ConoscopeFitResult result = fit_synthetic(c, 256).result;
     const FittedValue& thickness = result.parameters[static_cast<std::size_t>(PhotoParameter::thickness_um)];
     for (const auto& warning : result.warnings) std::printf("warning: %s\n", warning.c_str());
+    std::printf("thickness %.4f um, 1 sigma %.4g, identifiable %d\n", thickness.value, thickness.sigma.value_or(-1.0), thickness.identifiable ? 1 : 0);
     EXPECT_FALSE(thickness.identifiable);
     EXPECT_FALSE(thickness.sigma.has_value());
     EXPECT_FALSE(result.parameters[static_cast<std::size_t>(PhotoParameter::field_radius_px)].identifiable);
-    EXPECT_FALSE(result.warnings.empty());
+    // What it does determine, d/r² (the ring radii), comes with its 1σ and is within 1% of the truth. (Its 1σ
+    // leaves out that d/r² is not exactly what the rings fix: the phase is not exactly quadratic in ξ, so the
+    // ratio the fit returns moves along the valley it wanders in; here it is 2.3σ off.)
+    const auto combination = std::find_if(result.warnings.begin(), result.warnings.end(),
+                                          [](const std::string& w) { return w.find("thickness_um / field_radius_px^2 = ") != std::string::npos; });
+    ASSERT_NE(combination, result.warnings.end());
+    double ratio = 0.0, sigma = 0.0;
+    const std::string_view label = "field_radius_px^2 = ";
+    ASSERT_EQ(std::sscanf(combination->c_str() + combination->find(label) + label.size(), "%lf +- %lf", &ratio, &sigma), 2) << *combination;
+    const double truth = c.thickness_um / std::pow(0.5 * 256, 2);
+    std::printf("thickness / field radius^2: %.6g +- %.3g for %.6g\n", ratio, sigma, truth);
+    EXPECT_GT(sigma, 0.0);
+    EXPECT_NEAR(ratio, truth, 0.01 * truth);
 }
 
 // The encoding check's premise: the best fit's rendering (render_conoscope_photo) is the model the fit

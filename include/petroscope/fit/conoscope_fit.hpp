@@ -34,8 +34,15 @@ enum class PhotoParameter : int {
     gamma,
     blur_variance_px2,  // Gaussian blur of the optics and camera: σ² in pixels² (σ² rather than σ: the
                         // model is smooth in σ² down to 0, where ∂/∂σ would vanish)
+    envelope_center_x_px,  // IlluminationProfile::falloff: the centre of the light's envelope exp(−(r/R)^p) …
+    envelope_center_y_px,
+    envelope_radius_px,    //   … its radius R …
+    envelope_power,        //   … and its power p (2: Gaussian; large: a soft-edged disc)
+    distortion,            // radial distortion: the projection sees u·(1 + distortion·u²), u = r / field radius
+    analyzer_offset_deg,   // the analyzer turned from its set direction (polars not exactly crossed)
+    extinction_ratio,      // the fraction of the light vibrating across the analyzer that it lets through
 };
-constexpr int kPhotoParameterCount = 13;
+constexpr int kPhotoParameterCount = 20;
 using PhotoParameters = std::array<double, kPhotoParameterCount>;
 using PhotoParameterFlags = std::array<bool, kPhotoParameterCount>;
 
@@ -47,6 +54,21 @@ std::string_view photo_parameter_name(PhotoParameter parameter);
 /// The inverse; throws InputError listing the names.
 PhotoParameter parse_photo_parameter(std::string_view name);
 
+/// How directions map to the photo: the distance from the figure's centre is proportional to sin θ
+/// (a microscope objective, Abbe's sine condition), tan θ (a camera or plain lens looking through the
+/// crystal at a diffuse source, a figure on a screen) or θ (an equidistant, fish-eye-like lens); θ is
+/// the direction in air, where the objective or lens is.
+enum class Projection { sine, tangent, equidistant };
+
+/// What bounds the lit field: the objective's aperture at sin θ_air = NA, a sharp circle (`sharp`), or
+/// nothing the model draws (`none`: the frame and the illumination envelope bound it; a figure larger
+/// than the frame, or a soft stop).
+enum class FieldStop { sharp, none };
+
+/// The light over the photo: even, or falling off about its own centre as exp(−(r/R)^p) (vignetting,
+/// uneven Köhler illumination, a diffuse source of finite size).
+enum class IlluminationProfile { even, falloff };
+
 /// Everything about the figure that is not fitted.
 struct ConoscopePhotoModel {
     /// NA, polars, stage, surrounding medium, wavelengths (crystal_axes and thickness_um are not used).
@@ -57,10 +79,23 @@ struct ConoscopePhotoModel {
     /// Linear sRGB per unit transmission at each wavelength of settings (white light: the colour
     /// integrator's weights through the display conversion; monochromatic light: (1, 1, 1)).
     std::vector<Eigen::Vector3d> rgb_per_transmission;
+    Projection projection = Projection::sine;
+    FieldStop field_stop = FieldStop::sharp;
+    IlluminationProfile illumination = IlluminationProfile::even;
 };
 
+/// "sine", "tangent", "equidistant"; "sharp", "none"; "even", "falloff"; and the inverses, which throw
+/// InputError listing the names.
+std::string_view projection_name(Projection projection);
+Projection parse_projection(std::string_view name);
+std::string_view field_stop_name(FieldStop stop);
+FieldStop parse_field_stop(std::string_view name);
+std::string_view illumination_name(IlluminationProfile illumination);
+IlluminationProfile parse_illumination(std::string_view name);
+
 /// Starting values for a photo of this size: centre of the image, field radius half the shorter side,
-/// thickness 30 µm, no tilt, unit gains, black 0, gamma 2.2, blur 1 px.
+/// thickness 30 µm, no tilt, unit gains, black 0, gamma 2.2, blur 1 px; the envelope centred, of radius
+/// half the diagonal and power 2; no distortion, polars crossed, a perfect analyzer.
 PhotoParameters default_photo_parameters(int width_px, int height_px);
 
 struct ConoscopeFitOptions {
