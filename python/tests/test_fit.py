@@ -21,6 +21,21 @@ def test_the_thickness_comes_back_within_one_percent_and_two_sigma():
     assert fit["model"].shape == (96, 96, 3)
 
 
+def test_light_that_falls_off_is_fitted_with_the_figure():
+    # The light fading about a point off the figure's centre, as uneven illumination does, before the camera.
+    figure = np.clip(petroscope.conoscope(mineral="muscovite", thickness_um=40.0, size_px=96).image, 0.0, 1.0)
+    y, x = np.mgrid[0:96, 0:96] + 0.5
+    envelope = np.exp(-(np.hypot(x - 52.0, y - 44.0) / 40.0) ** 2.5)
+    photo = (figure * envelope[:, :, None]) ** (1 / 2.2)
+    fit = petroscope.fit_conoscope(photo, mineral="muscovite", thickness_um=30.0, fixed={"field_radius_px": 48.0}, illumination="falloff")
+    assert fit["acceptable"], fit["verdict"]
+    values = fit["values"]
+    assert abs(values["thickness_um"] - 40.0) < 0.4  # 1%
+    assert fit["free"]["envelope_radius_px"]
+    assert abs(values["envelope_center_x_px"] - 52.0) < 2.0 and abs(values["envelope_center_y_px"] - 44.0) < 2.0
+    assert abs(values["envelope_radius_px"] - 40.0) < 4.0
+
+
 def test_bad_photos_and_arguments_are_refused():
     with pytest.raises(TypeError, match="divide by 255"):
         petroscope.fit_conoscope(np.zeros((64, 64, 3), dtype=np.uint8))
@@ -30,6 +45,10 @@ def test_bad_photos_and_arguments_are_refused():
         petroscope.fit_conoscope(camera_photo(40.0, 64), free=["thickness"])
     with pytest.raises(ValueError, match="starting thickness"):
         petroscope.fit_conoscope(camera_photo(40.0, 64), thickness_um=-3.0)
+    with pytest.raises(ValueError, match="unknown projection 'fisheye'"):
+        petroscope.fit_conoscope(camera_photo(40.0, 64), projection="fisheye")
+    with pytest.raises(ValueError, match="illumination is even"):
+        petroscope.fit_conoscope(camera_photo(40.0, 64), free=["thickness_um", "envelope_radius_px"])
     with pytest.raises(petroscope.Cancelled):
         petroscope.fit_conoscope(camera_photo(40.0, 64), progress=lambda fraction: False)
 

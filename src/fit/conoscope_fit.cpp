@@ -548,6 +548,13 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
                          StepRule::finest_resolved_fringe);
     reached(0.15);
 
+    // The small corrections of the optics (distortion, the analyzer's offset and leak) are fitted on the full
+    // photo only: on the blurred levels, far from the fit, they only add ways to wander (a calcite figure
+    // through an equidistant lens went to the distortion's bound, past its fold, and to 870 µm for 150).
+    ConoscopeFitOptions polars_held = options;
+    for (const PhotoParameter p : {PhotoParameter::distortion, PhotoParameter::analyzer_offset_deg, PhotoParameter::extinction_ratio}) {
+        polars_held.free[index_of(p)] = false;
+    }
     // Every minimum is refined on the coarse level, for the geometry and the camera. Its thickness is not
     // held in the basin: at a wrong starting geometry the search's minima need not be the photo's.
     PhotoParameters geometry = start;
@@ -555,7 +562,7 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
     for (std::size_t k = 0; k < starts.size(); ++k) {
         PhotoParameters values = start;
         at(values, PhotoParameter::thickness_um) = starts[k].thickness_um;
-        const double cost = solve_level(*coarse, values, options, bounds, 30, 1e-6, result.iterations, relay);
+        const double cost = solve_level(*coarse, values, polars_held, bounds, 30, 1e-6, result.iterations, relay);
         if (cost < geometry_cost) {
             geometry_cost = cost;
             geometry = values;
@@ -572,9 +579,8 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
     const std::vector<ThicknessMinimum> minima =
         thickness_minima(*scan, model.rgb_per_transmission, geometry, scan_min_um, scan_max_um, options.candidates,
                          StepRule::power_weighted_fringes);
-    ConoscopeFitOptions geometry_held = options;
+    ConoscopeFitOptions geometry_held = polars_held;
     for (std::size_t k = index_of(PhotoParameter::center_x_px); k <= index_of(PhotoParameter::azimuth_deg); ++k) geometry_held.free[k] = false;
-    geometry_held.free[index_of(PhotoParameter::distortion)] = geometry_held.free[index_of(PhotoParameter::analyzer_offset_deg)] = false;
     std::size_t best = 0;
     double best_scan_cost = std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < minima.size(); ++k) {
