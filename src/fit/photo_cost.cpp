@@ -141,7 +141,7 @@ void PhotoCost::derivatives_at(const PhotoParameters& values, const std::vector<
                     phase_change[i] = d_phase_d_xi[0][i] * dxi[k][j].x() + d_phase_d_xi[1][i] * dxi[k][j].y();
                 }
             }
-            level_.evaluator.blur_response(seen, cached_phase_, values[kThickness], blur2, shifts, phase_change, through_blur);
+            level_.evaluator.blur_response(unlit, cached_phase_, values[kThickness], blur2, shifts, phase_change, through_blur);
             for (std::size_t k = 0; k < samples; ++k) column[k] += through_blur[k];
         }
     }
@@ -196,6 +196,7 @@ bool PhotoCost::Evaluate(double const* const* parameters, double* residuals, dou
     const std::vector<EnvelopeValue> envelope = level_.evaluator.envelope(values);
     const std::vector<Eigen::Vector2d> shifts = level_.evaluator.blur_shifts(envelope, total_blur2(values));
     LinearSamples unlit;
+    unlit.keep_fringe_terms = true;  // for the blur's part of the geometry's derivatives
     unlit_at(values, shifts, want_jacobian, unlit);
     std::array<std::vector<Eigen::Vector3d>, kPhotoParameterCount> d_linear;
     if (want_jacobian) {

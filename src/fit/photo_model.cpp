@@ -246,8 +246,8 @@ void PhotoModelEvaluator::phase_derivatives(const std::vector<InterferenceTerms>
     lattice_derivatives(lattice_, wavelength_count(), [&terms](std::size_t i) { return terms[i].phase_per_um; }, out);
 }
 
-void PhotoModelEvaluator::blur_response(const std::vector<InterferenceTerms>& terms, const PhaseDerivatives& phase, double thickness_um,
-                                        double blur2_px2, const std::vector<Eigen::Vector2d>& shifts, const std::vector<double>& phase_change,
+void PhotoModelEvaluator::blur_response(const LinearSamples& linear, const PhaseDerivatives& phase, double thickness_um, double blur2_px2,
+                                        const std::vector<Eigen::Vector2d>& shifts, const std::vector<double>& phase_change,
                                         std::vector<Eigen::Vector3d>& out) const {
     PhaseDerivatives change;
     lattice_derivatives(lattice_, wavelength_count(), [&phase_change](std::size_t i) { return phase_change[i]; }, change);
@@ -261,18 +261,11 @@ void PhotoModelEvaluator::blur_response(const std::vector<InterferenceTerms>& te
         const Eigen::Vector2d shift = shifts.empty() ? Eigen::Vector2d::Zero() : shifts[i];
         Eigen::Vector3d sum = Eigen::Vector3d::Zero();
         for (std::size_t w = 0, j = i * w_count; w < w_count; ++w, ++j) {
-            const InterferenceTerms& t = terms[j];
-            const double gx = phase.gradient_x[j], gy = phase.gradient_y[j];
-            const double attenuation = std::exp(-0.5 * blur2_px2 * d2 * (gx * gx + gy * gy));
-            const double rate = t.phase_per_um + 0.5 * blur2_px2 * phase.laplacian[j] + gx * shift.x() + gy * shift.y();
-            const double cosine = std::cos(rate * d), sine = std::sin(rate * d);
-            const double fringe = t.modulation * attenuation, sine_fringe = t.sine_modulation * attenuation;
-            const double fringes = fringe * cosine + sine_fringe * sine, per_phase = -fringe * sine + sine_fringe * cosine;
-            // T = mean + fringes(attenuation(∇Φ), phase(∇Φ, ∇²Φ)): ∂T/∂∇Φ = −σ²d²∇Φ·fringes + d·shift·per_phase,
-            // ∂T/∂∇²Φ = ½σ²d·per_phase.
+            // T = mean + fringes(attenuation(∇Φ), phase(∇Φ, ∇²Φ)): ∂T/∂∇Φ = −σ²d²∇Φ·fringes + d·shift·∂fringes/∂phase,
+            // ∂T/∂∇²Φ = ½σ²d·∂fringes/∂phase.
             const double dgx = change.gradient_x[j], dgy = change.gradient_y[j];
-            const double response = -blur2_px2 * d2 * (gx * dgx + gy * dgy) * fringes +
-                                    d * (0.5 * blur2_px2 * change.laplacian[j] + shift.x() * dgx + shift.y() * dgy) * per_phase;
+            const double response = -blur2_px2 * d2 * (phase.gradient_x[j] * dgx + phase.gradient_y[j] * dgy) * linear.fringes[j] +
+                                    d * (0.5 * blur2_px2 * change.laplacian[j] + shift.x() * dgx + shift.y() * dgy) * linear.fringes_per_phase[j];
             sum += model_.rgb_per_transmission[w] * response;
         }
         out[i] = sum;
@@ -285,8 +278,13 @@ void PhotoModelEvaluator::linear(const std::vector<InterferenceTerms>& terms, co
     const std::size_t w_count = wavelength_count();
     const int samples = static_cast<int>(sample_count());
     out.rgb.resize(sample_count());
+    const bool keep = derivatives && out.keep_fringe_terms;
     if (derivatives) {
         for (std::vector<Eigen::Vector3d>* d : {&out.d_thickness, &out.d_blur2, &out.d_shift_x, &out.d_shift_y}) d->resize(sample_count());
+    }
+    if (keep) {
+        out.fringes.resize(terms.size());
+        out.fringes_per_phase.resize(terms.size());
     }
     const double d2 = thickness_um * thickness_um;
 #pragma omp parallel for schedule(static)
@@ -311,6 +309,10 @@ void PhotoModelEvaluator::linear(const std::vector<InterferenceTerms>& terms, co
             rgb += model_.rgb_per_transmission[w] * (t.mean + fringes);
             if (!derivatives) continue;
             const double per_phase = -fringe * sine + sine_fringe * cosine;  // ∂(fringes)/∂phase
+            if (keep) {
+                out.fringes[first + w] = fringes;
+                out.fringes_per_phase[first + w] = per_phase;
+            }
             const double damping = blur2_px2 * thickness_um * g2;            // −∂(ln attenuation)/∂d
             d_thickness += model_.rgb_per_transmission[w] * (per_phase * rate - fringes * damping);
             // ∂/∂blur² through the Laplacian's phase shift and the attenuation (the shifts' own part: the caller's).

@@ -78,9 +78,13 @@ struct PhaseDerivatives {
 };
 
 /// Linear sRGB of every sample, and optionally its derivatives by thickness, by the blur's σ² and by the
-/// point where the figure is sampled (d_shift_x, d_shift_y: per pixel).
+/// point where the figure is sampled (d_shift_x, d_shift_y: per pixel). With `keep_fringe_terms` (and the
+/// derivatives), also each wavelength's blurred fringes and their derivative by the phase, [sample·W + w],
+/// for blur_response.
 struct LinearSamples {
     std::vector<Eigen::Vector3d> rgb, d_thickness, d_blur2, d_shift_x, d_shift_y;
+    bool keep_fringe_terms = false;
+    std::vector<double> fringes, fringes_per_phase;
 };
 
 class PhotoModelEvaluator {
@@ -123,7 +127,8 @@ public:
     /// stencil) times ∂(transmission)/∂ of each, summed over the wavelengths. A parameter that moves ξ by
     /// different amounts at different samples (the field radius, the rotation, the distortion, the centre of
     /// a projection other than the sine) changes them.
-    void blur_response(const std::vector<InterferenceTerms>& terms, const PhaseDerivatives& phase, double thickness_um, double blur2_px2,
+    /// `linear` holds the fringe terms of that thickness and blur (keep_fringe_terms).
+    void blur_response(const LinearSamples& linear, const PhaseDerivatives& phase, double thickness_um, double blur2_px2,
                        const std::vector<Eigen::Vector2d>& shifts, const std::vector<double>& phase_change,
                        std::vector<Eigen::Vector3d>& out) const;
 

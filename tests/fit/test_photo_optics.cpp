@@ -348,10 +348,10 @@ INSTANTIATE_TEST_SUITE_P(
 
 // Known failures, kept runnable (--gtest_also_run_disabled_tests) until the model handles them (issue 18
 // stays open); both within 2% but outside their 2σ. Muscovite 60 µm through a sine projection with a
-// pincushion distortion of 0.04: +0.36%, 20σ, R² 0.981 (the frame reaches |ξ| → 1, where the sine
+// pincushion distortion of 0.04: +0.40%, 4.0σ, R² 0.982 (the frame reaches |ξ| → 1, where the sine
 // projection packs the fringes of grazing light into a few pixels, finer than the pixel, and a camera's
 // pixels average them in a way the model's blur does not follow; through a tangent projection the same
-// photo comes out −0.13%). Quartz 400 µm through a tangent projection: +0.074%, 2.1σ.
+// photo came out −0.13%, 4σ). Quartz 400 µm through a tangent projection: +0.074%, 2.1σ.
 INSTANTIATE_TEST_SUITE_P(
     DISABLED_KnownOpticsFailures, RealOpticsFitTest,
     ::testing::Values(
