@@ -97,54 +97,55 @@ std::vector<Eigen::Vector3d> PhotoCost::model_values(const PhotoParameters& valu
     return camera_values(linear.rgb, values);
 }
 
+void PhotoCost::direction_columns(const PhotoParameters& values, const std::vector<Eigen::Vector2d>& shifts, const LinearSamples& unlit,
+                                  std::array<std::vector<Eigen::Vector3d>, kPhotoParameterCount>& d_linear) const {
+    // ∂/∂ξ by forward differences (two evaluations), with the phase's derivatives over the photo held; what
+    // moving ξ unevenly over the photo does to those (and so to the fringe blur) is added through ∂Φ/∂ξ.
+    const std::size_t samples = level_.evaluator.sample_count(), w_count = level_.evaluator.wavelength_count();
+    const double blur2 = total_blur2(values);
+    const std::vector<InterferenceTerms>& seen = seen_terms();
+    std::vector<InterferenceTerms> shifted;
+    LinearSamples moved;
+    std::array<std::vector<Eigen::Vector3d>, 2> d_xi;
+    std::array<std::vector<double>, 2> d_phase_d_xi;
+    for (std::size_t axis = 0; axis < 2; ++axis) {
+        level_.evaluator.terms(values, shifted, kXiStep * (axis == 0 ? Eigen::Vector2d::UnitX() : Eigen::Vector2d::UnitY()));
+        level_.evaluator.linear(shifted, cached_phase_, values[kThickness], blur2, shifts, false, moved);
+        d_xi[axis].resize(samples);
+        for (std::size_t k = 0; k < samples; ++k) d_xi[axis][k] = (moved.rgb[k] - unlit.rgb[k]) / kXiStep;
+        d_phase_d_xi[axis].resize(seen.size());
+        for (std::size_t i = 0; i < seen.size(); ++i) d_phase_d_xi[axis][i] = (shifted[i].phase_per_um - seen[i].phase_per_um) / kXiStep;
+    }
+    std::vector<std::array<Eigen::Vector2d, 5>> dxi(samples);
+    for (std::size_t k = 0; k < samples; ++k) dxi[k] = direction_derivatives(level_.evaluator.model(), values, level_.evaluator.lattice().pixels[k]);
+    std::vector<double> phase_change(seen.size());
+    std::vector<Eigen::Vector3d> through_blur;
+    for (std::size_t j = 0; j < kDirectionParameters.size(); ++j) {
+        if (!free_[static_cast<std::size_t>(kDirectionParameters[j])]) continue;
+        std::vector<Eigen::Vector3d>& column = d_linear[static_cast<std::size_t>(kDirectionParameters[j])];
+        column.resize(samples);
+        for (std::size_t k = 0; k < samples; ++k) {
+            column[k] = d_xi[0][k] * dxi[k][j].x() + d_xi[1][k] * dxi[k][j].y();
+            for (std::size_t i = k * w_count; i < (k + 1) * w_count; ++i) {
+                phase_change[i] = d_phase_d_xi[0][i] * dxi[k][j].x() + d_phase_d_xi[1][i] * dxi[k][j].y();
+            }
+        }
+        level_.evaluator.blur_response(unlit, cached_phase_, values[kThickness], blur2, shifts, phase_change, through_blur);
+        for (std::size_t k = 0; k < samples; ++k) column[k] += through_blur[k];
+    }
+}
+
 void PhotoCost::derivatives_at(const PhotoParameters& values, const std::vector<Eigen::Vector2d>& shifts, const LinearSamples& unlit,
                                const std::vector<EnvelopeValue>& envelope,
                                std::array<std::vector<Eigen::Vector3d>, kPhotoParameterCount>& d_linear) const {
     const std::size_t samples = level_.evaluator.sample_count();
     const double blur2 = total_blur2(values);
+    // Centre, radius, rotation and distortion act through ξ.
+    if (std::any_of(kDirectionParameters.begin(), kDirectionParameters.end(), [&](PhotoParameter p) { return free_[static_cast<std::size_t>(p)]; })) {
+        direction_columns(values, shifts, unlit, d_linear);
+    }
     std::vector<InterferenceTerms> shifted;
     LinearSamples moved;
-    // The unlit colour's change per unit of a change made to the figure's terms.
-    const auto difference = [&](double step) {
-        std::vector<Eigen::Vector3d> slope(samples);
-        for (std::size_t k = 0; k < samples; ++k) slope[k] = (moved.rgb[k] - unlit.rgb[k]) / step;
-        return slope;
-    };
-    // Centre, radius, rotation and distortion act through ξ: ∂/∂ξ by forward differences (two evaluations),
-    // with the phase's derivatives over the photo held; what moving ξ unevenly over the photo does to those
-    // (and so to the fringe blur) is added through ∂Φ/∂ξ.
-    const bool any_direction = std::any_of(kDirectionParameters.begin(), kDirectionParameters.end(),
-                                           [&](PhotoParameter p) { return free_[static_cast<std::size_t>(p)]; });
-    if (any_direction) {
-        const std::vector<InterferenceTerms>& seen = seen_terms();
-        std::array<std::vector<Eigen::Vector3d>, 2> d_xi;
-        std::array<std::vector<double>, 2> d_phase_d_xi;
-        for (std::size_t axis = 0; axis < 2; ++axis) {
-            level_.evaluator.terms(values, shifted, kXiStep * (axis == 0 ? Eigen::Vector2d::UnitX() : Eigen::Vector2d::UnitY()));
-            level_.evaluator.linear(shifted, cached_phase_, values[kThickness], blur2, shifts, false, moved);
-            d_xi[axis] = difference(kXiStep);
-            d_phase_d_xi[axis].resize(seen.size());
-            for (std::size_t i = 0; i < seen.size(); ++i) d_phase_d_xi[axis][i] = (shifted[i].phase_per_um - seen[i].phase_per_um) / kXiStep;
-        }
-        std::vector<std::array<Eigen::Vector2d, 5>> dxi(samples);
-        for (std::size_t k = 0; k < samples; ++k) dxi[k] = direction_derivatives(level_.evaluator.model(), values, level_.evaluator.lattice().pixels[k]);
-        const std::size_t w_count = level_.evaluator.wavelength_count();
-        std::vector<double> phase_change(seen.size());
-        std::vector<Eigen::Vector3d> through_blur;
-        for (std::size_t j = 0; j < kDirectionParameters.size(); ++j) {
-            std::vector<Eigen::Vector3d>& column = d_linear[static_cast<std::size_t>(kDirectionParameters[j])];
-            if (!free_[static_cast<std::size_t>(kDirectionParameters[j])]) continue;
-            column.resize(samples);
-            for (std::size_t k = 0; k < samples; ++k) {
-                column[k] = d_xi[0][k] * dxi[k][j].x() + d_xi[1][k] * dxi[k][j].y();
-                for (std::size_t i = k * w_count; i < (k + 1) * w_count; ++i) {
-                    phase_change[i] = d_phase_d_xi[0][i] * dxi[k][j].x() + d_phase_d_xi[1][i] * dxi[k][j].y();
-                }
-            }
-            level_.evaluator.blur_response(unlit, cached_phase_, values[kThickness], blur2, shifts, phase_change, through_blur);
-            for (std::size_t k = 0; k < samples; ++k) column[k] += through_blur[k];
-        }
-    }
     // Tilt, azimuth and the analyzer's offset change the terms themselves (and the phase's derivatives).
     PhaseDerivatives moved_phase;
     for (const PhotoParameter p : kReevaluatedParameters) {
@@ -155,7 +156,8 @@ void PhotoCost::derivatives_at(const PhotoParameters& values, const std::vector<
         level_.evaluator.terms(turned, shifted);
         level_.evaluator.phase_derivatives(shifted, moved_phase);
         level_.evaluator.linear(shifted, moved_phase, values[kThickness], blur2, shifts, false, moved);
-        d_linear[j] = difference(kAngleStep);
+        d_linear[j].resize(samples);
+        for (std::size_t k = 0; k < samples; ++k) d_linear[j][k] = (moved.rgb[k] - unlit.rgb[k]) / kAngleStep;
     }
     // The extinction ratio adds the blocked light: its derivative is that light.
     if (free_[kExtinction]) {

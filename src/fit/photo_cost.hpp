@@ -39,6 +39,9 @@ private:
     void derivatives_at(const PhotoParameters& values, const std::vector<Eigen::Vector2d>& shifts, const LinearSamples& unlit,
                         const std::vector<EnvelopeValue>& envelope, std::array<std::vector<Eigen::Vector3d>, kPhotoParameterCount>& d_linear) const;
 
+    /// The columns of d_linear for the free kDirectionParameters (they act through ξ), unlit.
+    void direction_columns(const PhotoParameters& values, const std::vector<Eigen::Vector2d>& shifts, const LinearSamples& unlit,
+                           std::array<std::vector<Eigen::Vector3d>, kPhotoParameterCount>& d_linear) const;
     /// The terms unlit_at used: the cached ones, leaked by the extinction ratio where the analyzer leaks.
     const std::vector<InterferenceTerms>& seen_terms() const { return cached_terms_.blocked.empty() ? cached_terms_.passed : leaked_; }
     /// The blur's σ² in the model: the parameter plus the level's extra blur of the photo.
