@@ -189,7 +189,7 @@ std::vector<ThicknessMinimum> thickness_minima(const PhotoLevel& level, const st
         const auto end = std::upper_bound(by_gradient.begin(), by_gradient.end(), std::pair{limit, 1e300});
         return end == by_gradient.begin() ? 0.0 : running_max[static_cast<std::size_t>(end - by_gradient.begin()) - 1];
     };
-    // The colour each sample would show without fringes, Σ_w rgb_w·mean_w: what the fringes add to it is
+    // The colour each sample would show without fringes, E·Σ_w rgb_w·mean_w: what the fringes add to it is
     // the signal whose rate of change sets the step.
     const std::size_t wavelengths = level.evaluator.wavelength_count();
     std::vector<Eigen::Vector3d> fringe_free(level.evaluator.sample_count(), Eigen::Vector3d::Zero());
