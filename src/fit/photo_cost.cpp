@@ -13,13 +13,16 @@ constexpr int kGamma = static_cast<int>(PhotoParameter::gamma);
 constexpr int kBlur = static_cast<int>(PhotoParameter::blur_variance_px2);
 constexpr int kExtinction = static_cast<int>(PhotoParameter::extinction_ratio);
 constexpr int kEnvelopeX = static_cast<int>(PhotoParameter::envelope_center_x_px);
-// The parameters that change the figure's terms (the cache's key), and those of them whose derivative is
-// taken by evaluating the terms again (the others act through ξ).
-constexpr std::array<PhotoParameter, 8> kTermParameters{
-    PhotoParameter::center_x_px, PhotoParameter::center_y_px, PhotoParameter::field_radius_px, PhotoParameter::rotation_deg,
-    PhotoParameter::distortion,  PhotoParameter::tilt_deg,    PhotoParameter::azimuth_deg,     PhotoParameter::analyzer_offset_deg};
+// The parameters whose derivative is taken by evaluating the figure's terms again; with those that act
+// through ξ (kDirectionParameters), every parameter that changes the terms: the cache's key.
 constexpr std::array<PhotoParameter, 3> kReevaluatedParameters{PhotoParameter::tilt_deg, PhotoParameter::azimuth_deg,
                                                                PhotoParameter::analyzer_offset_deg};
+constexpr auto kTermParameters = [] {
+    std::array<PhotoParameter, kDirectionParameters.size() + kReevaluatedParameters.size()> all{};
+    std::copy(kReevaluatedParameters.begin(), kReevaluatedParameters.end(),
+              std::copy(kDirectionParameters.begin(), kDirectionParameters.end(), all.begin()));
+    return all;
+}();
 // Forward-difference steps: ξ (units of k₀) and the angles of the crystal and analyzer (degrees). Phases reach 10⁴ rad, so
 // the truncation error ½f''h stays near 10⁻³ of f' at h = 10⁻⁶ while rounding (10⁻¹³/h) is negligible.
 constexpr double kXiStep = 1e-6;

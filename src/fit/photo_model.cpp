@@ -177,7 +177,12 @@ void PhotoModelEvaluator::analyzer_terms(const PhotoParameters& values, bool wit
 
 void PhotoModelEvaluator::terms(const PhotoParameters& values, std::vector<InterferenceTerms>& out, const Eigen::Vector2d& xi_offset) const {
     AnalyzerTerms parts;
+    parts.passed.swap(out);  // the caller's buffer, reused (the terms fill tens of megabytes)
     analyzer_terms(values, false, parts, xi_offset);
+    if (parts.blocked.empty()) {
+        out.swap(parts.passed);
+        return;
+    }
     leaked_terms(parts, at(values, PhotoParameter::extinction_ratio), out);
 }
 

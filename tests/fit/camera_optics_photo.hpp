@@ -114,10 +114,7 @@ inline Image photo_through_optics(const ConoscopePhotoModel& model, const PhotoL
             linear.at<cv::Vec3d>(y, x) = cv::Vec3d(value[0], value[1], value[2]);
         }
     }
-    if (truth.blur_px > 0.0) cv::GaussianBlur(linear, linear, cv::Size(0, 0), truth.blur_px);
-    return camera_image(
-        linear, [&truth](int c, double value) { return std::pow(std::max(truth.gains[c] * value, 0.0), 1.0 / truth.gamma); }, truth.noise,
-        truth.jpeg_quality, seed, jpeg_file);
+    return blurred_camera_image(linear, truth.blur_px, truth.gains, truth.gamma, truth.noise, truth.jpeg_quality, seed, jpeg_file);
 }
 
 }  // namespace petroscope::testing

@@ -101,6 +101,16 @@ inline Image camera_image(const cv::Mat& linear, const std::function<double(int,
     return photo;
 }
 
+/// camera_image of `linear` blurred by a Gaussian of σ = `blur_px` (the optics), through white-balance gains and
+/// a pure gamma: value = (gain·linear)^(1/γ).
+inline Image blurred_camera_image(cv::Mat linear, double blur_px, const Eigen::Vector3d& gains, double gamma, double noise_sigma,
+                                  int jpeg_quality, unsigned seed, std::vector<std::uint8_t>* jpeg_file) {
+    if (blur_px > 0.0) cv::GaussianBlur(linear, linear, cv::Size(0, 0), blur_px);
+    return camera_image(
+        linear, [&gains, gamma](int c, double value) { return std::pow(std::max(gains[c] * value, 0.0), 1.0 / gamma); }, noise_sigma,
+        jpeg_quality, seed, jpeg_file);
+}
+
 /// The photo (camera values 0 … 1, 3 channels) of `size_px`² that `truth` describes; `seed` for the noise;
 /// the JPEG file's bytes to `jpeg_file` when given.
 inline Image synthesize_photo(const ConoscopePhotoModel& model, const PhotoLight& light, const PhotoTruth& truth, int size_px,
@@ -138,10 +148,7 @@ inline Image synthesize_photo(const ConoscopePhotoModel& model, const PhotoLight
             linear.at<cv::Vec3d>(y, x) = cv::Vec3d(rgb[0], rgb[1], rgb[2]);
         }
     }
-    if (truth.blur_px > 0.0) cv::GaussianBlur(linear, linear, cv::Size(0, 0), truth.blur_px);
-    return camera_image(
-        linear, [&truth](int c, double value) { return std::pow(std::max(truth.gains[c] * value, 0.0), 1.0 / truth.gamma); }, truth.noise,
-        truth.jpeg_quality, seed, jpeg_file);
+    return blurred_camera_image(linear, truth.blur_px, truth.gains, truth.gamma, truth.noise, truth.jpeg_quality, seed, jpeg_file);
 }
 
 }  // namespace petroscope::testing
