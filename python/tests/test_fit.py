@@ -47,6 +47,8 @@ def test_bad_photos_and_arguments_are_refused():
         petroscope.fit_conoscope(camera_photo(40.0, 64), thickness_um=-3.0)
     with pytest.raises(ValueError, match="unknown projection 'fisheye'"):
         petroscope.fit_conoscope(camera_photo(40.0, 64), projection="fisheye")
+    with pytest.raises(ValueError, match="extinction_ratio = 1.5 is outside 0 ... 0.2"):
+        petroscope.fit_conoscope(camera_photo(40.0, 64), fixed={"extinction_ratio": 1.5})
     with pytest.raises(ValueError, match="illumination is even"):
         petroscope.fit_conoscope(camera_photo(40.0, 64), free=["thickness_um", "envelope_radius_px"])
     with pytest.raises(petroscope.Cancelled):

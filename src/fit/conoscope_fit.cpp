@@ -491,6 +491,15 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
     };
     const bool white_light = model.settings.wavelengths_nm.size() > 1;
     const Image photo = colour_photo(photo_in, white_light);
+    // A held parameter outside the box the fit keeps the free ones in is a value the model is not meant for
+    // (a zero field or envelope radius, an extinction ratio of 2): refused, naming it.
+    const Bounds bounds = detail::photo_parameter_bounds(options.thickness_min_um, options.thickness_max_um, photo.width, photo.height);
+    for (std::size_t k = 0; k < kPhotoParameterCount; ++k) {
+        const double value = options.initial[k];
+        if (options.free[k] || (value >= bounds.lower[k] && value <= bounds.upper[k])) continue;
+        throw InputError(std::string(kNames[k]) + " = " + format_significant(value, 6) + " is outside " + format_significant(bounds.lower[k], 6) +
+                         " ... " + format_significant(bounds.upper[k], 6) + " for this photo and thickness range");
+    }
     PhotoParameters start = options.initial;
     const Eigen::Vector2d centre(at(start, PhotoParameter::center_x_px), at(start, PhotoParameter::center_y_px));
     const bool sharp_stop = model.field_stop == FieldStop::sharp;
@@ -530,7 +539,6 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
     ConoscopeFitResult result;
     result.pixels_used = fine->usable_count;
     result.pixels_saturated = static_cast<int>(fine->evaluator.sample_count()) - fine->usable_count;
-    const Bounds bounds = detail::photo_parameter_bounds(options.thickness_min_um, options.thickness_max_um, photo.width, photo.height);
     // The thickness range scanned (one thickness when it is fixed), and bounds that keep a refinement of
     // a minimum in its basin (out to the global bound where the basin reaches the end of the range).
     const bool thickness_free = options.free[index_of(PhotoParameter::thickness_um)];

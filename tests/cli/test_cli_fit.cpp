@@ -92,6 +92,9 @@ TEST_F(FitCli, BadPhotosAndOptionsAreRefused) {
                     {"--projection", "'fisheye'", "sine, tangent, equidistant"});
     expect_rejected("fit conoscope --photo " + testing::quoted(photo) + tail + " --field-stop soft", {"--field-stop", "'soft'", "sharp, none"});
     expect_rejected("fit conoscope --photo " + testing::quoted(photo) + tail + " --illumination dim", {"--illumination", "'dim'", "even, falloff"});
+    expect_rejected("fit conoscope --photo " + testing::quoted(photo) + tail + " --illumination falloff --fix envelope_radius_px=0",
+                    {"envelope_radius_px = 0", "outside"});
+    expect_rejected("fit conoscope --photo " + testing::quoted(photo) + tail + " --fix extinction_ratio=1.5", {"extinction_ratio = 1.5", "0 ... 0.2"});
     expect_rejected("fit conoscope --photo " + testing::quoted(photo) + tail + " --free thickness,envelope",
                     {"--free", "envelope_center_x_px", "illumination is even", "falloff"});
     expect_rejected("fit conoscope --photo " + testing::quoted(photo) + " --mineral quartz --thickness-range 5mm:1mm -o " + testing::quoted(out()),
