@@ -26,7 +26,7 @@ constexpr double kHankelFrom = kTaylorIntervals;
 // From kHankelFrom on: Hankel's expansion with kHankelTerms terms in each of P and Q; at x ≥ 20 the first
 // omitted term, √(2/πx)·a₁₆(ν)/x¹⁶, is below 2e-15, and the result agrees with std::cyl_bessel_j to 6e-15.
 constexpr int kHankelTerms = 8;
-// sine_cosine (core/fast_math.hpp) keeps its accuracy below 2²⁰·π.
+// sine_cosine (core/fast_math.hpp) keeps its accuracy below 2¹⁹·π.
 constexpr double kLargestArgument = 1.0e6;
 
 struct TaylorTables {

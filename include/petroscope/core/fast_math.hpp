@@ -2,6 +2,8 @@
 // Branch-free elementary functions that compilers can vectorise (std::sin cannot be, without
 // -ffast-math), accurate to a few ulp.
 #include <array>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <cstddef>
 
@@ -88,12 +90,10 @@ inline double sine_series(double r) {
     return r * polynomial(coefficients, r * r);
 }
 
-/// cos r for |r| ≤ π/2: the Taylor series to degree 22 (truncation < 1e-19), Σ (−1)ⁿ r²ⁿ/(2n)!.
+/// cos r for |r| ≤ π/4: the Taylor series Σ (−1)ⁿ r²ⁿ/(2n)! to degree 16 (truncation < 3e-18).
 inline double cosine_series(double r) {
-    constexpr std::array<double, 12> coefficients{1.0, -1.0 / 2.0, 1.0 / 24.0, -1.0 / 720.0, 1.0 / 40320.0, -1.0 / 3628800.0,
-                                                  1.0 / 479001600.0, -1.0 / 87178291200.0, 1.0 / 20922789888000.0,
-                                                  -1.0 / 6402373705728000.0, 1.0 / 2432902008176640000.0,
-                                                  -1.0 / 1124000727777607680000.0};
+    constexpr std::array<double, 9> coefficients{1.0, -1.0 / 2.0, 1.0 / 24.0, -1.0 / 720.0, 1.0 / 40320.0, -1.0 / 3628800.0,
+                                                 1.0 / 479001600.0, -1.0 / 87178291200.0, 1.0 / 20922789888000.0};
     return polynomial(coefficients, r * r);
 }
 
@@ -120,14 +120,25 @@ inline double sine(double x) {
     return fast_math_detail::parity_sign(k) * fast_math_detail::sine_series(r);
 }
 
-/// sin(x) and cos(x) for |x| < 2²⁰·π from one reduction: cos(kπ + r) = (−1)ᵏ cos r.
+/// sin(x) and cos(x) for |x| < 2¹⁹·π from one reduction by π/2, x = kπ/2 + r with |r| ≤ π/4, where the series are
+/// short: with s = sin r and c = cos r, (sin x, cos x) is (s, c), (c, −s), (−s, −c), (−c, s) for k mod 4 = 0, 1, 2, 3.
 struct SineCosine {
     double sine, cosine;
 };
 inline SineCosine sine_cosine(double x) {
-    const auto [r, k] = fast_math_detail::reduce_by_pi_over<1>(x);
-    const double sign = fast_math_detail::parity_sign(k);
-    return {sign * fast_math_detail::sine_series(r), sign * fast_math_detail::cosine_series(r)};
+    constexpr double inverse = 2.0 * 0.318309886183790671538;
+    constexpr double high = 3.14159265346825122833e+00 / 2, low = 1.21542010130123844986e-10 / 2;
+    // k + 1.5·2⁵² holds k's low bits in its own low bits (two's complement of k for k < 0, as the shift is even).
+    const double shifted = x * inverse + 6755399441055744.0;
+    const double k = shifted - 6755399441055744.0;
+    const double r = (x - k * high) - k * low;
+    const double s = fast_math_detail::sine_series<8>(r), c = fast_math_detail::cosine_series(r);
+    const auto bits = std::bit_cast<std::uint64_t>(shifted);
+    const bool odd = (bits & 1u) != 0;
+    // sin x < 0 for k mod 4 = 2, 3 (bit 1 of k), cos x for k mod 4 = 1, 2 (bit 1 of k + 1): flip the sign bit.
+    const std::uint64_t sine_flip = (bits & 2u) << 62, cosine_flip = ((bits + 1u) & 2u) << 62;
+    return {std::bit_cast<double>(std::bit_cast<std::uint64_t>(odd ? c : s) ^ sine_flip),
+            std::bit_cast<double>(std::bit_cast<std::uint64_t>(odd ? s : c) ^ cosine_flip)};
 }
 
 /// sin x / x from x ≥ 0 and its sine, with the series 1 − x²/6 below 1e-6 (where the quotient loses digits and
