@@ -161,7 +161,7 @@ def flux_z(e, h):
 
 
 # ----------------------------------------------------------------------------------------------------
-# Isotropic Fresnel formulae (Born & Wolf §1.5.2; shared/docs/physics-notes.md §4).
+# Isotropic Fresnel formulae (Born & Wolf §1.5.2; docs/theory.md §3).
 
 def fresnel(n1, n2, theta1):
     c1 = math.cos(theta1)
@@ -292,7 +292,7 @@ def solve_explicit(n1, k_in, jones, modes):
 # Crystals.
 
 def biaxial_vz(n_alpha, n_beta, n_gamma):
-    """Angle of the binormals from Z: tan^2 Vz = (a - b)/(b - c), a = n_alpha^-2 ... (shared/docs/physics-notes.md §2)."""
+    """Angle of the binormals from Z: tan^2 Vz = (a - b)/(b - c), a = n_alpha^-2 ... (docs/theory.md §1; Born & Wolf §15.3.3)."""
     a, b, c = n_alpha ** -2, n_beta ** -2, n_gamma ** -2
     return math.atan(math.sqrt((a - b) / (b - c)))
 

@@ -161,7 +161,7 @@ void ConoscopeOptions::add_options(CLI::App* command) {
     command->add_flag("--exact", exact_, "With the whole stack: coherent 4x4 transfer matrix, every multiple reflection; slowest")
         ->excludes(surround);
     command->add_option("--handedness", handedness_,
-                        "right | left: which form of an optically active mineral (quartz occurs as both; right turns the\n"
+                        "right | left: which form of an optically active mineral (quartz, paratellurite: both occur; right turns the\n"
                         "plane of polarization clockwise seen looking toward the light, docs/conventions.md)")
         ->capture_default_str();
     command->add_flag("--exact-spectrum", exact_spectrum_,

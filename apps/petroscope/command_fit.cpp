@@ -280,7 +280,7 @@ void add_fit_command(CLI::App& app, const std::string& minerals_dir) {
     conoscope->add_option("--polarizer-deg", options->polarizer_deg, "Polarizer direction in the lab")->capture_default_str();
     conoscope->add_option("--analyzer-deg", options->analyzer_deg, "Analyzer direction in the lab")->capture_default_str();
     conoscope->add_option("--surround-n", options->surround_n, "Index of the medium around the slab")->capture_default_str();
-    conoscope->add_option("--handedness", options->handedness, "right | left: the form of an optically active mineral (quartz)")
+    conoscope->add_option("--handedness", options->handedness, "right | left: the form of an optically active mineral (quartz, paratellurite)")
         ->capture_default_str();
     conoscope->add_option("--candidates", options->candidates, "Thickness minima refined by Ceres")->capture_default_str()->check(CLI::Range(1, 20));
     conoscope->add_flag("--verbose", options->verbose, "Print the solver's own messages (Ceres, glog) on standard error");

@@ -249,7 +249,7 @@ void add_fit_orthoscope_command(CLI::App* fit, const std::string& minerals_dir) 
     command->add_option("--polarizer-deg", options->polarizer_deg, "Polarizer direction in the lab")->capture_default_str();
     command->add_option("--analyzer-deg", options->analyzer_deg, "Analyzer direction in the lab")->capture_default_str();
     command->add_option("--candidates", options->candidates, "Grid minima refined by Ceres")->capture_default_str()->check(CLI::Range(1, 20));
-    command->add_option("--handedness", options->handedness, "right | left: the form of an optically active mineral (quartz)")->capture_default_str();
+    command->add_option("--handedness", options->handedness, "right | left: the form of an optically active mineral (quartz, paratellurite)")->capture_default_str();
     add_light_options(command, options->light);
     add_fit_output_options(command, options->output_dir, options->json);
     command->callback([options, &minerals_dir] { run_fit_orthoscope(*options, minerals_dir); });

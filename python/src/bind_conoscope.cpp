@@ -71,7 +71,7 @@ surround_n: index on both faces (immersed). mounting: 'immersed', 'thin-section'
 plate: 'gypsum', 'mica' or 'wedge'; plate_slow_deg its slow direction; wedge_position 0 to 1.
 exact_spectrum: white light with the modes solved at every wavelength instead of at 8 and interpolated
   (slower; the reference the default is tested against).
-handedness: 'right' or 'left', the form of an optically active mineral (quartz); right turns the plane of
+handedness: 'right' or 'left', the form of an optically active mineral (quartz, paratellurite); right turns the plane of
   polarization clockwise seen looking toward the light. No effect on an inactive mineral (a note says so).
 progress: called with the fraction done; return False to cancel (petroscope.Cancelled). Ctrl-C cancels.
 

@@ -277,7 +277,7 @@ orientation: 'max-birefringence' (the grain shows its highest colour; its angle 
   euler_zyz_deg) or 'free' (only the retardation is determined). thickness_range_um: (min, max) searched.
 exposure_free: fit the exposure too. candidates: grid minima refined (1 to 20). condenser_na,
   polarizer_deg, analyzer_deg, light (white: a Light or None) as for orthoscope(). handedness: 'right' or
-  'left', the form of an optically active mineral (quartz): with a plate in, it changes a grain's colour by
+  'left', the form of an optically active mineral (quartz, paratellurite): with a plate in, it changes a grain's colour by
   about a code level.
 progress: called with the fraction done; return False to cancel. Ctrl-C cancels.
 verbose: the solver's (Ceres's) messages on standard error, as for fit_conoscope().

@@ -96,7 +96,7 @@ void bind_orthoscope(py::module_& module) {
              py::arg("handedness") = py::none(),
              "label: its value in the label map (0 to 65535). mineral: name or alias. euler_zyz_deg: orientation of the\n"
              "indicatrix (docs/conventions.md). thickness_um: its own thickness instead of the section's. handedness:\n"
-             "'right' or 'left', the form of an optically active mineral (quartz); None: right.")
+             "'right' or 'left', the form of an optically active mineral (quartz, paratellurite); None: right.")
         .def_readonly("label", &ThinSectionGrain::label)
         .def_readonly("mineral", &ThinSectionGrain::mineral)
         .def_readonly("thickness_um", &ThinSectionGrain::thickness_um)

@@ -39,7 +39,9 @@ Eigen::Matrix3d gyration_of(const JsonValue& medium, double wavelength_nm) {
     const JsonValue value = medium["rotatory_power_deg_per_mm"];
     const std::vector<double> rho = value.numbers(3);
     const Eigen::Vector3d rho_deg_per_mm(rho[0], rho[1], rho[2]);
-    if (!(rho_deg_per_mm.cwiseAbs().maxCoeff() <= 1000.0)) throw value.error("expected rotatory powers within ±1000 °/mm");
+    if (!(rho_deg_per_mm.cwiseAbs().maxCoeff() <= kMaxRotatoryPowerDegPerMm)) {
+        throw value.error("expected rotatory powers within ±" + format_number(kMaxRotatoryPowerDegPerMm) + " °/mm");
+    }
     return gyration_tensor(rho_deg_per_mm * (std::numbers::pi / 180.0 * 1e-3), Eigen::Matrix3d::Identity(), wavelength_nm, Handedness::right);
 }
 

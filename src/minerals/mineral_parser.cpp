@@ -2,6 +2,7 @@
 
 #include "petroscope/core/error.hpp"
 #include "petroscope/core/text.hpp"
+#include "petroscope/optics/gyration.hpp"
 
 #include <algorithm>
 #include <array>
@@ -129,9 +130,6 @@ PrincipalAxis read_axis(RecordReader& reader, const std::string& suffix, std::ve
     return axis;
 }
 
-// Largest rotatory power accepted, °/mm, over the visible: beyond it a value is taken for a gross mistake (a
-// formula pole among the wavelengths, °/m instead of °/mm). Quartz turns 21.7 °/mm at 589 nm.
-constexpr double kMaxRotatoryPowerDegPerMm = 1000.0;
 // The rotatory power is checked every 5 nm over the CIE 1931 observer's range, 360 … 830 nm.
 constexpr double kCheckedFromNm = 360.0, kCheckedToNm = 830.0, kCheckStepNm = 5.0;
 

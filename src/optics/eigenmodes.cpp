@@ -35,7 +35,7 @@ WaveMode complete_mode(const BinormalFrame& frame, const Eigen::Vector3d& k_hat,
     mode.n = 1.0 / std::sqrt(inverse_n2);
     mode.d_hat = d_hat;
     mode.e_field = frame.impermeability * d_hat;
-    // Walk-off: tan α = n²·(k̂·η·D̂), ŝ ∝ k̂ − tan α·D̂ (physics notes §2).
+    // Walk-off: tan α = n²·(k̂·η·D̂), ŝ ∝ k̂ − tan α·D̂ (docs/theory.md §1, "Eigenmodes"; Born & Wolf §15.2).
     const double tan_alpha = mode.n * mode.n * k_hat.dot(mode.e_field);
     mode.ray_direction = (k_hat - tan_alpha * d_hat).normalized();
     return mode;

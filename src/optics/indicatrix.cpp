@@ -38,7 +38,7 @@ BasicBinormalFrame<Real>::BasicBinormalFrame(const Indicatrix& indicatrix) {
     axes.col(2) = axes.col(0).cross(axes.col(1));
     e_a = axes.col(order[0]);
     e_c = axes.col(order[2]);
-    // tan²V = (a − b)/(b − c) (physics notes §2); atan2 keeps V defined for uniaxial (b = c or a = b)
+    // tan²V = (a − b)/(b − c) (docs/theory.md §1; Born & Wolf §15.3.3); atan2 keeps V defined for uniaxial (b = c or a = b)
     // and isotropic (all equal: V = 0) crystals.
     v_rad = atan2(sqrt(max(a - b, Real(0))), sqrt(max(b - c, Real(0))));
     if (b == c && a != b) {

@@ -184,7 +184,7 @@ TEST_F(SweepCli, TwoOptionsMakeAGridAndConicalRingsScaleWithLengthAndWaist) {
     EXPECT_EQ(rows[1].at("length"), "10mm");
     EXPECT_EQ(rows[1].at("waist"), "60um");
     EXPECT_EQ(rows[2].at("length"), "20mm");
-    // The paraxial rings depend on ρ0 = A·l/w alone, in units of w (physics notes §7): (10 mm, 30 µm) and
+    // The paraxial rings depend on ρ0 = A·l/w alone, in units of w (docs/theory.md §8): (10 mm, 30 µm) and
     // (20 mm, 60 µm) share ρ0, so every ring radius doubles.
     for (const char* ring : {"ring_outer_bright_um", "ring_dark_um", "ring_inner_bright_um"}) {
         EXPECT_NEAR(number(rows[3], ring) / number(rows[0], ring), 2.0, 1e-9) << ring;

@@ -1,4 +1,4 @@
-// Internal conical refraction in wave optics (Belsky–Khapalyuk, Berry 2004; physics notes §7): the focal
+// Internal conical refraction in wave optics (Belsky–Khapalyuk, Berry 2004; docs/theory.md §8): the focal
 // ring structure, power conservation, the symmetry and polarisation of the pattern, the approach to the
 // ray limit, and B₀, B₁ against exact results and against an independent brute-force quadrature.
 #include "petroscope/core/error.hpp"
@@ -58,7 +58,7 @@ Complex adaptive_simpson(const std::function<Complex(double)>& f, double a, doub
     return sum;
 }
 
-// B₀, B₁ by brute force: the integrals of physics notes §7 with std::cyl_bessel_j, to 1e-11.
+// B₀, B₁ by brute force: the integrals of docs/theory.md §8 with std::cyl_bessel_j, to 1e-11.
 std::pair<Complex, Complex> brute_force_b(const ConicalWaveParameters& parameters, double rho) {
     const bool pinhole = parameters.beam == ConicalBeam::pinhole;
     const double sigma = kConicalPinholeEdgeWidth;
@@ -80,7 +80,7 @@ std::pair<Complex, Complex> brute_force_b(const ConicalWaveParameters& parameter
 
 TEST(ConicalWave, FocalPlaneRingsOfAGaussianBeam) {
     // Z = 0: outer bright ring, Poggendorff dark ring and inner bright ring. For ρ₀ → ∞ they lie at
-    // ρ₀ + 0.551, ρ₀ − 0.765, ρ₀ − 1.746 with the outer ring ~4.7× brighter (physics notes §7); at ρ₀ = 20 the
+    // ρ₀ + 0.551, ρ₀ − 0.765, ρ₀ − 1.746 with the outer ring ~4.7× brighter (from the integrals of Berry 2004, docs/theory.md §8); at ρ₀ = 20 the
     // O(1/ρ₀) curvature of the ring moves them inward by ≈ 0.4/ρ₀ (the issue's +0.53, −0.78, −1.77).
     struct Case {
         double rho0, outer, dark, inner, tolerance, ratio_low, ratio_high;

@@ -24,35 +24,51 @@ namespace {
 
 const Mineral& quartz() { return testing::repository_minerals().find("quartz"); }
 
-// Monochromatic 1 mm basal plate of quartz (optic axis along the microscope), 65 px so that the middle pixel is ξ = 0.
-ConoscopeSettings basal_quartz(Handedness handedness, double thickness_um = 1000.0) {
-    ConoscopeSettings settings = testing::figure_settings(quartz(), Cut::optic_axis, thickness_um, 65, 589.3);
-    settings.gyration = mineral_gyration(quartz(), handedness);
+// Monochromatic basal plate (optic axis along the microscope), 65 px so that the middle pixel is ξ = 0.
+ConoscopeSettings basal_plate(const Mineral& mineral, Handedness handedness, double thickness_um, double wavelength_nm) {
+    ConoscopeSettings settings = testing::figure_settings(mineral, Cut::optic_axis, thickness_um, 65, wavelength_nm);
+    settings.gyration = mineral_gyration(mineral, handedness);
     return settings;
 }
+ConoscopeSettings basal_quartz(Handedness handedness, double thickness_um = 1000.0) {
+    return basal_plate(quartz(), handedness, thickness_um, 589.3);
+}
 
-double centre(const ConoscopeSettings& settings) {
-    return render_conoscope(settings, testing::indices_of(quartz()), nullptr).at(32, 32, 0);
+double centre(const ConoscopeSettings& settings, const Mineral& mineral = quartz()) {
+    return render_conoscope(settings, testing::indices_of(mineral), nullptr).at(32, 32, 0);
 }
 
 double rotation_rad(double thickness_um) { return quartz().principal_rotatory_power(589.3)[2] * thickness_um; }
 
-TEST(ConoscopeActivity, TheCentreOfA1mmQuartzPlateIsSinSquaredOfTheRotationTimesTheFaces) {
-    // Crossed polars, 589.3 nm: sin²(ρd)·T with ρd = 21.72° (the record's formula: 21.722°) and T the normal-
-    // incidence transmission of the two faces, (4n_s·n_o/(n_s + n_o)²)².
-    const double n_o = quartz().principal_n(589.3)[0];
+// Crossed polars: sin²(ρd)·T at the centre of a basal plate, T the normal-incidence transmission of its two faces,
+// (4n_s·n_o/(n_s + n_o)²)²; dark without the activity.
+void expect_sin_squared_centre(const Mineral& mineral, double thickness_um, double wavelength_nm) {
+    const double n_o = mineral.principal_n(wavelength_nm)[0];
     const double n_s = ConoscopeSettings{}.surround_n;
     const double faces = std::pow(4.0 * n_s * n_o / std::pow(n_s + n_o, 2), 2);
-    const double rotation = rotation_rad(1000.0);
-    EXPECT_NEAR(rotation * 180.0 / std::numbers::pi, 21.72, 0.005);
+    const double rotation = mineral.principal_rotatory_power(wavelength_nm)[2] * thickness_um;
     for (const Handedness handedness : {Handedness::right, Handedness::left}) {
         const double expected = std::pow(std::sin(rotation), 2) * faces;
-        EXPECT_NEAR(centre(basal_quartz(handedness)), expected, 1e-7 * expected) << handedness_name(handedness);
+        EXPECT_NEAR(centre(basal_plate(mineral, handedness, thickness_um, wavelength_nm), mineral), expected, 1e-7 * expected)
+            << handedness_name(handedness);
     }
-    // Without the activity the centre is dark.
-    ConoscopeSettings inactive = basal_quartz(Handedness::right);
+    ConoscopeSettings inactive = basal_plate(mineral, Handedness::right, thickness_um, wavelength_nm);
     inactive.gyration = {};
-    EXPECT_LT(centre(inactive), 1e-20);
+    EXPECT_LT(centre(inactive, mineral), 1e-20);
+}
+
+TEST(ConoscopeActivity, TheCentreOfA1mmQuartzPlateIsSinSquaredOfTheRotationTimesTheFaces) {
+    // 589.3 nm: ρd = 21.72° (the record's formula: 21.722°).
+    EXPECT_NEAR(rotation_rad(1000.0) * 180.0 / std::numbers::pi, 21.72, 0.005);
+    expect_sin_squared_centre(quartz(), 1000.0, 589.3);
+}
+
+TEST(ConoscopeActivity, TheCentreOfAParatellurite200umPlateIsSinSquaredOfTheRotationTimesTheFaces) {
+    // The second active crystal: 632.8 nm, ρd = 17.4° (86.9 °/mm in its table; 0.2 % more in the record's formula),
+    // with a birefringence 17 times quartz's around the axis.
+    const Mineral& paratellurite = testing::repository_minerals().find("paratellurite");
+    EXPECT_NEAR(paratellurite.principal_rotatory_power(632.8)[2] * 200.0 * 180.0 / std::numbers::pi, 17.38, 0.04);
+    expect_sin_squared_centre(paratellurite, 200.0, 632.8);
 }
 
 TEST(ConoscopeActivity, TheAnalyzerTurnedWithThePlaneExtinguishesTheCentre) {

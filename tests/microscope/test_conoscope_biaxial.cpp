@@ -11,7 +11,7 @@ namespace petroscope {
 namespace {
 
 // Mallard: the binormal leaves into air at sin V' = nβ sin V, imaged at r/r_max = sin V'/NA
-// (physics notes §6).
+// (docs/theory.md §5, "Mallard's law"; Nesse, Introduction to Optical Mineralogy).
 double mallard_radius_px(const Mineral& mineral, const ConoscopeSettings& settings) {
     const OpticalSummary summary = optical_summary(mineral, settings.wavelengths_nm[0]);
     const double v = 0.5 * *summary.two_v_deg * std::numbers::pi / 180.0;

@@ -370,7 +370,8 @@ TEST(MineralParser, BadRotatoryPowersAreRefusedWithTheLineAndReason) {
     EXPECT_CONTAINS(parse_error(join(without(active_uniaxial_lines(), 9))), "missing key 'rotatory_power_axis.source'");
     const std::string model = parse_error(join(with(active_uniaxial_lines(), 10, "rotatory_power_normal: drude 1")));
     EXPECT_CONTAINS(model, "t.txt:10: rotatory_power_normal:");
-    const std::string range = parse_error(join(with(active_uniaxial_lines(), 10, "rotatory_power_normal: constant 2170")));
+    // Quartz's 21.7 °/mm written in °/m.
+    const std::string range = parse_error(join(with(active_uniaxial_lines(), 10, "rotatory_power_normal: constant -21700")));
     EXPECT_CONTAINS(range, "t.txt:10:");
     EXPECT_CONTAINS(range, "within");
     const std::string sign = parse_error(join(with(active_uniaxial_lines(), 8, "rotatory_power_axis: constant -21.7")));

@@ -65,7 +65,7 @@ Eigen::Vector3cd cross(const Eigen::Vector3cd& a, const Eigen::Vector3cd& b) {
     return {a.y() * b.z() - a.z() * b.y(), a.z() * b.x() - a.x() * b.z(), a.x() * b.y() - a.y() * b.x()};
 }
 
-// S_z = ½ Re(ψ₁ψ₂* + ψ₃ψ₄*) (physics notes §3).
+// S_z = ½ Re(ψ₁ψ₂* + ψ₃ψ₄*) (Berreman, J. Opt. Soc. Am. 62, 502 (1972); docs/theory.md §3).
 double flux(const Eigen::Vector4cd& psi) {
     return 0.5 * (psi[0] * std::conj(psi[1]) + psi[2] * std::conj(psi[3])).real();
 }
@@ -83,7 +83,7 @@ Eigen::Vector3cd transmitted_e(const StackResponse& response) {
 }
 
 // Fresnel amplitudes at an isotropic interface in terms of q = n cos θ (Born & Wolf, Principles of Optics,
-// §1.5.2, eqs. 20–21; physics notes §4). r_p is Born & Wolf's; berreman.hpp's p basis keeps the transverse
+// §1.5.2, eqs. 20–21; docs/theory.md §3). r_p is Born & Wolf's; berreman.hpp's p basis keeps the transverse
 // part of E along +ρ̂ for both the incident and the reflected wave, which reverses the sign of r_p.
 struct Fresnel {
     Complex r_s, t_s, r_p, t_p;
@@ -201,7 +201,7 @@ TEST(BerremanModes, ExactDegeneracyOnAnOpticAxisGivesFiniteFluxOrthogonalModes) 
     // [s-like (E·ρ̂ = 0), p-like], share q = n_β b̂_z, and carry no cross flux, so that powers add.
     const double n_alpha = 1.5, n_beta = 1.6, n_gamma = 1.7;
     const double v = std::atan(std::sqrt((1.0 / (n_alpha * n_alpha) - 1.0 / (n_beta * n_beta)) /
-                                         (1.0 / (n_beta * n_beta) - 1.0 / (n_gamma * n_gamma))));  // physics notes §2
+                                         (1.0 / (n_beta * n_beta) - 1.0 / (n_gamma * n_gamma))));  // docs/theory.md §1; Born & Wolf §15.3.3
     const Eigen::Vector3cd biaxial(n_alpha, n_beta, n_gamma);
     struct Case {
         Eigen::Matrix3cd epsilon;
@@ -247,7 +247,7 @@ TEST(BerremanModes, ExactDegeneracyOnAnOpticAxisGivesFiniteFluxOrthogonalModes) 
 
 TEST(BerremanStack, IsotropicInterfaceMatchesFresnel) {
     // n₁ → n₂, 0–89.9° below the critical angle, ξ along varying azimuths: r and t equal the Fresnel amplitudes
-    // (with the p-sign convention above), R = |r|², T = (n₂cos θ₂)/(n₁cos θ₁)|t|² (physics notes §4).
+    // (with the p-sign convention above), R = |r|², T = (n₂cos θ₂)/(n₁cos θ₁)|t|² (Born & Wolf §1.5.3; docs/theory.md §3).
     double worst_amplitude = 0.0, worst_power = 0.0;
     const std::array<std::pair<double, double>, 3> pairs{{{1.0, 1.5}, {1.5, 1.0}, {1.0, 2.4}}};
     for (const auto& [n1, n2] : pairs) {
@@ -284,7 +284,7 @@ TEST(BerremanStack, IsotropicInterfaceMatchesFresnel) {
 
 TEST(BerremanStack, TotalInternalReflectionReflectsEverything) {
     // 1.5 → 1 beyond the critical angle (41.81°): R_s = R_p = 1, the transmitted waves are evanescent and carry
-    // nothing, and r equals the Fresnel formula with cos θ₂ imaginary (q₂ = i√(ξ² − n₂²), physics notes §4),
+    // nothing, and r equals the Fresnel formula with cos θ₂ imaginary (q₂ = i√(ξ² − n₂²); Born & Wolf §1.5.4, docs/theory.md §3),
     // which gives the s and p waves different phases.
     const double n1 = 1.5, n2 = 1.0;
     double worst_power = 0.0, worst_amplitude = 0.0;
@@ -472,7 +472,7 @@ Eigen::Vector4d stokes(const Eigen::Vector3cd& e) {
 TEST(BerremanStack, QuarterWavePlateTurnsLinearIntoCircularLight) {
     // A uniaxial plate, optic axis in its plane at 45°, d = λ/(4(n_e − n_o)), between media of the same ε (no
     // interface: reflections vanish exactly). Light polarised along x (45° from the axis) leaves circular:
-    // the retardation 2π(n_e − n_o)d/λ = π/2 (physics notes §3, textbook limit).
+    // the retardation 2π(n_e − n_o)d/λ = π/2 (the textbook limit, docs/theory.md §4; Born & Wolf §15.4.3).
     const double n_o = 1.544, n_e = 1.553, wavelength_nm = 589.3;
     const Eigen::Matrix3cd epsilon = principal_epsilon(Eigen::Vector3cd(n_e, n_o, n_o), rotation_z(kPi / 4.0));
     const double thickness_um = wavelength_nm * 1e-3 / (4.0 * (n_e - n_o));
@@ -676,7 +676,7 @@ TEST(BerremanStack, OpticAxisNormalToTheStackIsHandledExactlyAndContinuously) {
 
 TEST(BerremanStack, UniaxialSubstrateCutNormalToItsAxisReflectsAsItsOrdinaryIndex) {
     // Air onto a uniaxial crystal cut ⟂ its optic axis, normal incidence: both transmitted waves are o waves
-    // (exactly degenerate in the substrate), R = ((n_o − 1)/(n_o + 1))² for any polarisation (physics notes §4),
+    // (exactly degenerate in the substrate), R = ((n_o − 1)/(n_o + 1))² for any polarisation (Born & Wolf §1.5.2 with n_o),
     // and the per-mode powers add to T = 1 − R because the degenerate pair carries no cross flux.
     const double n_o = 1.658, n_e = 1.486;
     const Eigen::Matrix3cd substrate = principal_epsilon(Eigen::Vector3cd(n_o, n_o, n_e), Eigen::Matrix3d::Identity());

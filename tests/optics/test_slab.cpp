@@ -130,7 +130,7 @@ TEST(SlabTransfer, MatchesDirect4x4BoundarySolveAndConservesEnergy) {
 }
 
 TEST(SlabTransfer, IsotropicSlabGivesTheFresnelProducts) {
-    // A slab of index n₂ in a medium n₁: single pass t₁₂·t₂₁ for s and for p (physics notes §4), and no
+    // A slab of index n₂ in a medium n₁: single pass t₁₂·t₂₁ for s and for p (Born & Wolf §1.5.2; docs/theory.md §3), and no
     // s–p mixing, whatever mode basis the degenerate crystal returns.
     for (const double n_slab : {1.5, 2.4, 1.2}) {
         for (const double xi : {0.0, 0.3, 0.7, 0.99}) {
@@ -155,7 +155,7 @@ TEST(SlabTransfer, IsotropicSlabGivesTheFresnelProducts) {
 }
 
 TEST(SlabJones, PhaseDifferenceIsTheTextbookRetardationAtNormalIncidence) {
-    // Optic axis in the slab plane, normal incidence: δ = 2π d (n_slow − n_fast)/λ (physics notes §3).
+    // Optic axis in the slab plane, normal incidence: δ = 2π d (n_slow − n_fast)/λ (docs/theory.md §4; Born & Wolf §15.4.3).
     const BinormalFrame frame(Indicatrix{{1.544, 1.544, 1.553}, Eigen::Matrix3d(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()))});
     const TangentialWavevector direction = TangentialWavevector::from_xi(Eigen::Vector2d::Zero());
     const SlabTransfer transfer = slab_transfer(solve_slab_modes(frame, direction, Eigen::Vector2d::Constant(NAN)), direction, 1.544, 1.544);

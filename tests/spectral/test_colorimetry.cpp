@@ -134,7 +134,7 @@ TEST_F(Colorimetry, D65WhiteHasTheD65Chromaticity) {
 }
 
 TEST_F(Colorimetry, FiveNanometreGridAgreesWithTheOneNanometreTables) {
-    // Physics notes §5 (wavelength_grid.hpp): on 5 nm steps Y changes by < 2e-5 against the 1 nm tables, for
+    // docs/theory.md §7 (wavelength_grid.hpp): on 5 nm steps Y changes by < 2e-5 against the 1 nm tables, for
     // smooth spectra. Checked on spectra whose features are >= ~70 nm wide. (Measured independently in Python
     // from the same tables: ramp 8.3e-6, Gaussian of 1/e half-width 70 nm 7.1e-6, one cosine period over the
     // range 1.6e-5, retarder Γ = 300 nm 1.7e-6; narrower spectra come closer to or exceed the bound, e.g. a

@@ -21,7 +21,7 @@ MeanColour mean_colour(const Image& linear_rgb, bool circular_field);
 /// Field points (x, y) of a conoscopic figure (x to the E, y to the N, 1 = the edge of the field, as in
 /// conoscope_tangential_wavevector) of the optic axes: the wave normal along a binormal b̂ has index nβ
 /// (ω for a uniaxial crystal), so its tangential wavevector nβ·(b_x, b_y) is kept into air and it is imaged
-/// at nβ·(b_x, b_y)/NA (physics notes §6, Mallard). One point for a uniaxial crystal, two for a biaxial
+/// at nβ·(b_x, b_y)/NA (Mallard's law, docs/theory.md §5). One point for a uniaxial crystal, two for a biaxial
 /// one; an axis lying in the plane of the slab (a flash figure) has none. Points may lie outside the field.
 std::vector<Eigen::Vector2d> conoscope_optic_axis_points(const ConoscopeSettings& settings, const Eigen::Vector3d& principal_n);
 

@@ -19,13 +19,13 @@ struct ModePair {
 };
 
 /// 1/n² = m ± Δ with m = (a + c)/2 + (a − c)/2·c₁c₂, Δ = (a − c)/2·s₁s₂, cᵢ = k̂·bᵢ, sᵢ = |k̂ × bᵢ|;
-/// + is the fast wave (Biot–Fresnel; Born & Wolf, Principles of Optics, §15.3; physics notes §2).
+/// + is the fast wave (Biot–Fresnel; Born & Wolf, Principles of Optics, §15.3; docs/theory.md §1).
 /// Written with cross products so that it stays exact on and near the binormals. Returns
 /// (1/n_fast², 1/n_slow²) for the unit wave normal `k_hat`.
 Eigen::Vector2d inverse_squared_indices(const BinormalFrame& frame, const Eigen::Vector3d& k_hat);
 
 /// The vibration directions: D_slow ∥ p̂₁ + p̂₂, D_fast ∥ p̂₁ − p̂₂, p̂ᵢ the unit projections of the
-/// binormals on the plane ⟂ k̂ (physics notes §2); the longer of the two sums is normalised and the other
+/// binormals on the plane ⟂ k̂ (docs/theory.md §1, "Eigenmodes"); the longer of the two sums is normalised and the other
 /// direction is k̂ × it. Exactly on a binormal any orthonormal pair is returned (the modes are
 /// degenerate there). Returns (D̂_fast, D̂_slow).
 template <typename Real>

@@ -15,7 +15,7 @@ struct Indicatrix {
     Eigen::Matrix3d impermeability() const;
 };
 
-/// What the Biot–Fresnel construction needs (physics notes §2): the sorted principal impermeabilities
+/// What the Biot–Fresnel construction needs (docs/theory.md §1; Born & Wolf §15.3.3): the sorted principal impermeabilities
 /// a ≥ b ≥ c (a = 1/n_min², c = 1/n_max²) and the two binormals (optic axes of the wave normals),
 /// b₁,₂ = cos V·e_c ± sin V·e_a, both with a non-negative component along e_c, tan²V = (a − b)/(b − c).
 /// A uniaxial crystal has b₁ = ±b₂ (V = 0 or 90°), an isotropic one a = c. `Real` is double, or long double

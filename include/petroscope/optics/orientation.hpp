@@ -31,7 +31,7 @@ Eigen::Matrix3d cut_orientation(Cut cut, OpticalClass optical_class, const Eigen
                                 double azimuth_deg, double tilt_deg);
 
 /// The angle V_z of each binormal from the indicatrix Z axis: tan²V_z = (1/nα² − 1/nβ²)/(1/nβ² − 1/nγ²)
-/// (physics notes §2), in radians, for indices along X, Y, Z.
+/// (docs/theory.md §1, "Binormals and biradials"; Born & Wolf §15.3.3), in radians, for indices along X, Y, Z.
 double binormal_angle_from_z(const Eigen::Vector3d& principal_n);
 
 }  // namespace petroscope

@@ -7,7 +7,7 @@ namespace petroscope {
 /// XYZ of the sRGB reference white (D65, Y = 1), IEC 61966-2-1.
 Eigen::Vector3d srgb_white_xyz();
 
-/// Linear sRGB from XYZ with the matrix of IEC 61966-2-1 (physics notes §5).
+/// Linear sRGB from XYZ with the matrix of IEC 61966-2-1 (docs/theory.md §7).
 Eigen::Vector3d xyz_to_linear_srgb(const Eigen::Vector3d& xyz);
 
 /// The sRGB transfer curve: 12.92c for c ≤ 0.0031308, else 1.055c^(1/2.4) − 0.055 (IEC 61966-2-1).
