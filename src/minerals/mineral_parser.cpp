@@ -3,11 +3,13 @@
 #include "petroscope/core/error.hpp"
 #include "petroscope/core/text.hpp"
 #include "petroscope/optics/gyration.hpp"
+#include "petroscope/optics/indicatrix.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <set>
 #include <sstream>
 
@@ -138,24 +140,14 @@ std::vector<std::string> rotatory_power_keys(OpticalClass optical_class) {
     switch (optical_class) {
         case OpticalClass::isotropic: return {"rotatory_power"};
         case OpticalClass::uniaxial: return {"rotatory_power_normal", "rotatory_power_axis"};
-        case OpticalClass::biaxial: return {};
+        case OpticalClass::biaxial: return {"rotatory_power_x", "rotatory_power_y", "rotatory_power_z"};
     }
     return {};
 }
 
-// Optical activity: all of the class's rotatory power keys or none, each with its source, in range at the
-// reference wavelength, and the one along the optic axis (any direction when isotropic) positive: the record
-// gives the right-handed form.
+// Optical activity: all of the class's rotatory power keys or none, each with its source and within range over
+// the visible.
 void read_rotatory_powers(RecordReader& reader, Mineral& mineral, std::vector<std::string>& valid) {
-    if (mineral.optical_class == OpticalClass::biaxial) {
-        for (const char* key : {"rotatory_power", "rotatory_power_axis", "rotatory_power_normal"}) {
-            if (const Entry* entry = reader.find(key)) {
-                throw reader.error(*entry, "optical activity of biaxial crystals is not supported yet (rotatory powers are read for "
-                                           "isotropic and uniaxial records, minerals/README.md)");
-            }
-        }
-        return;
-    }
     const std::vector<std::string> keys = rotatory_power_keys(mineral.optical_class);
     std::vector<const Entry*> entries;
     for (const std::string& key : keys) {
@@ -163,14 +155,15 @@ void read_rotatory_powers(RecordReader& reader, Mineral& mineral, std::vector<st
         valid.push_back(key + ".source");
         entries.push_back(reader.find(key));
     }
-    const auto given = std::count_if(entries.begin(), entries.end(), [](const Entry* entry) { return entry != nullptr; });
-    if (given == 0) return;
+    const auto given = std::find_if(entries.begin(), entries.end(), [](const Entry* entry) { return entry != nullptr; });
+    if (given == entries.end()) return;
     for (std::size_t i = 0; i < keys.size(); ++i) {
         if (entries[i] == nullptr) {
-            const Entry& other = *entries[1 - i];
-            throw reader.error(other, "optical activity of a uniaxial crystal needs both rotatory_power_axis and "
-                                      "rotatory_power_normal (°/mm for waves along and across the optic axis); " +
-                                          keys[i] + " is missing");
+            std::string all_keys = keys.front();
+            for (std::size_t k = 1; k < keys.size(); ++k) all_keys += (k + 1 == keys.size() ? " and " : ", ") + keys[k];
+            throw reader.error(**given, "optical activity of a " + std::string(optical_class_name(mineral.optical_class)) + " crystal needs " +
+                                            all_keys + " (°/mm for waves along its principal directions, minerals/README.md); " + keys[i] +
+                                            " is missing");
         }
         RotatoryPower power{keys[i], parse_model(reader, *entries[i], keys[i]),
                             reader.require(keys[i] + ".source", "where the numbers of " + keys[i] + " come from").value};
@@ -185,11 +178,25 @@ void read_rotatory_powers(RecordReader& reader, Mineral& mineral, std::vector<st
         }
         mineral.rotatory_powers.push_back(std::move(power));
     }
-    const RotatoryPower& along_axis = mineral.rotatory_powers.back();
-    if (!(along_axis.deg_per_mm(mineral.reference_wavelength_nm) > 0.0)) {
-        throw reader.error(*entries.back(), along_axis.key + " must be positive at the reference wavelength: a record gives the "
-                                            "right-handed (dextrorotatory) form, and --handedness left mirrors it");
-    }
+}
+
+// A record gives the right-handed (dextrorotatory) form: along an optic axis (any direction when isotropic) its
+// rotatory power ŝ·ρ·ŝ is positive at the reference wavelength. A biaxial crystal's optic axes (binormals) lie in
+// its XZ plane, at V from Z with tan²V = (1/nα² − 1/nβ²)/(1/nβ² − 1/nγ²) (Born & Wolf §15.3.3), where ŝ·ρ·ŝ =
+// ρ_x sin²V + ρ_z cos²V. Called once the indices are known to be ordered.
+void require_right_handed(RecordReader& reader, const Mineral& mineral) {
+    if (!mineral.optically_active()) return;
+    const double wavelength_nm = mineral.reference_wavelength_nm;
+    const Eigen::Vector3d binormal = BinormalFrame(Indicatrix{mineral.principal_n(wavelength_nm)}).binormal_1;
+    const double along_optic_axis_deg_per_mm =
+        binormal.dot(mineral.principal_rotatory_power(wavelength_nm).cwiseProduct(binormal)) * 180.0 / std::numbers::pi * 1e3;
+    if (along_optic_axis_deg_per_mm > 0.0) return;
+    const RotatoryPower& last = mineral.rotatory_powers.back();
+    std::ostringstream what;
+    what << "the rotatory power along the optic " << (mineral.optical_class == OpticalClass::biaxial ? "axes" : "axis") << " is "
+         << along_optic_axis_deg_per_mm << " deg/mm at " << wavelength_nm
+         << " nm; it must be positive: a record gives the right-handed (dextrorotatory) form, and --handedness left mirrors it";
+    throw reader.error(reader.require(last.key, ""), what.str());
 }
 
 }  // namespace
@@ -257,6 +264,7 @@ Mineral parse_mineral(std::string_view text, const std::string& file_name) {
     if (mineral.optical_class == OpticalClass::uniaxial && n_reference[0] == n_reference[1]) {
         throw reader.error(reader.require("n_e", ""), "uniaxial indices n_o and n_e are equal: use class: isotropic");
     }
+    require_right_handed(reader, mineral);
     return mineral;
 }
 

@@ -365,7 +365,7 @@ TEST(MineralParser, RotatoryPowersOfAUniaxialCrystal) {
 
 TEST(MineralParser, BadRotatoryPowersAreRefusedWithTheLineAndReason) {
     // One component alone, a missing source, a bad model, out of range, negative along the axis (the record gives
-    // the right-handed form), a pole among the wavelengths, a biaxial record, uniaxial keys on an isotropic one.
+    // the right-handed form), a pole among the wavelengths, uniaxial keys on biaxial and isotropic records.
     EXPECT_CONTAINS(parse_error(join(without(without(active_uniaxial_lines(), 11), 10))), "rotatory_power_normal is missing");
     EXPECT_CONTAINS(parse_error(join(without(active_uniaxial_lines(), 9))), "missing key 'rotatory_power_axis.source'");
     const std::string model = parse_error(join(with(active_uniaxial_lines(), 10, "rotatory_power_normal: drude 1")));
@@ -381,13 +381,50 @@ TEST(MineralParser, BadRotatoryPowersAreRefusedWithTheLineAndReason) {
     const std::string pole = parse_error(join(with(active_uniaxial_lines(), 8, "rotatory_power_axis: drude 7 0.45")));
     EXPECT_CONTAINS(pole, "t.txt:8:");
     EXPECT_CONTAINS(pole, "from 360 to 830 nm");
-    const std::string biaxial = parse_error(join(plus(plus(biaxial_lines(), "rotatory_power_axis: constant 1"), "rotatory_power_axis.source: s")));
-    EXPECT_CONTAINS(biaxial, "t.txt:10:");
-    EXPECT_CONTAINS(biaxial, "biaxial crystals is not supported yet");
-    // The uniaxial keys on an isotropic record are unknown there.
+    // The uniaxial keys on biaxial and isotropic records are unknown there.
+    EXPECT_CONTAINS(parse_error(join(plus(plus(biaxial_lines(), "rotatory_power_axis: constant 1"), "rotatory_power_axis.source: s"))),
+                    "unknown key 'rotatory_power_axis'");
     EXPECT_CONTAINS(parse_error("name: g\nsystem: cubic\nclass: isotropic\nn: constant 1.5\nn.source: x\nrotatory_power_axis: constant 3\n"
                                 "rotatory_power_axis.source: s"),
                     "unknown key 'rotatory_power_axis'");
+}
+
+// testite (nα 1.50, nβ 1.52, nγ 1.56) with rotatory powers along X, Y, Z.
+std::vector<std::string> active_biaxial_lines(const std::string& x, const std::string& y, const std::string& z) {
+    auto lines = biaxial_lines();
+    for (const std::string& line : {"rotatory_power_x: constant " + x, std::string("rotatory_power_x.source: X"),  // 10, 11
+                                    "rotatory_power_y: constant " + y, std::string("rotatory_power_y.source: Y"),  // 12, 13
+                                    "rotatory_power_z: constant " + z, std::string("rotatory_power_z.source: Z")})  // 14, 15
+        lines.push_back(line);
+    return lines;
+}
+
+TEST(MineralParser, RotatoryPowersOfABiaxialCrystalAlongItsIndicatrixAxes) {
+    const Mineral active = parse_mineral(join(active_biaxial_lines("5", "-3", "2")), "t.txt");
+    ASSERT_TRUE(active.optically_active());
+    const double deg_per_mm = std::numbers::pi / 180.0 * 1e-3;
+    EXPECT_TRUE(active.principal_rotatory_power(500.0).isApprox(Eigen::Vector3d(5.0, -3.0, 2.0) * deg_per_mm, 1e-15));
+    EXPECT_EQ(active.rotatory_powers[2].source, "Z");
+    // Landau's g = λρ/π along each axis (docs/theory.md §9), and the mirror form's opposite.
+    const Eigen::Matrix3d g = active.gyration(500.0, Handedness::right);
+    EXPECT_NEAR(g(0, 0), 0.5 * 5.0 * deg_per_mm / std::numbers::pi, 1e-18);
+    EXPECT_NEAR(g(1, 1), 0.5 * -3.0 * deg_per_mm / std::numbers::pi, 1e-18);
+    EXPECT_EQ(g(0, 1), 0.0);
+    EXPECT_TRUE(active.gyration(500.0, Handedness::left).isApprox(-g, 1e-15));
+}
+
+TEST(MineralParser, BadBiaxialRotatoryPowersAreRefusedWithTheLineAndReason) {
+    // A missing component names the others.
+    const std::string missing = parse_error(join(without(without(active_biaxial_lines("5", "-3", "2"), 13), 12)));
+    EXPECT_CONTAINS(missing, "t.txt:10:");
+    EXPECT_CONTAINS(missing, "rotatory_power_y is missing");
+    // Along the optic axes, at V = 36.1° from Z (sin²V = 0.3463), ρ_x sin²V + ρ_z cos²V = −5·0.3463 + 2·0.6537 < 0:
+    // the left-handed form, refused; with ρ_x = −3 the same sum is +0.27 and the record is accepted.
+    const std::string sign = parse_error(join(active_biaxial_lines("-5", "1", "2")));
+    EXPECT_CONTAINS(sign, "t.txt:14:");
+    EXPECT_CONTAINS(sign, "optic axes is -0.42");
+    EXPECT_CONTAINS(sign, "right-handed");
+    EXPECT_TRUE(parse_mineral(join(active_biaxial_lines("-3", "1", "2")), "t.txt").optically_active());
 }
 
 TEST(MineralParser, RotatoryPowerOfAnIsotropicCrystalIsTheSameAlongEveryAxis) {
