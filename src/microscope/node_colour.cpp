@@ -26,6 +26,13 @@ bool narrow_range(const NodeValues& angle) {
 // (spectral_nodes.hpp), and each term within 1e-4 of the transmission.
 constexpr double kTermTolerance = 1e-4;
 
+// `values` interpolated to the grid wavelengths begin … begin + length − 1, one quantity at a time: its eight node
+// values stay in vector registers, where several quantities at once would spill them to memory.
+void interpolate_chunk(const double* basis, std::size_t stride, std::size_t begin, std::size_t length, const NodeValues& values, double* out) {
+#pragma omp simd
+    for (std::size_t i = 0; i < length; ++i) out[i] = interpolate_at(basis, stride, begin + i, values);
+}
+
 }  // namespace
 
 NodeColour::Forms NodeColour::forms_of(const SpectralNodes& nodes, const std::array<std::vector<double>, 3>& channel_weights) {
@@ -129,7 +136,7 @@ std::optional<Eigen::Vector3d> NodeColour::xyz(const SpectralNodes& nodes, const
 
 template <NodeColour::Oscillation Kind>
 Eigen::Vector3d NodeColour::oscillating_sum(const SpectralNodes& nodes, const NodeValues& angle, const std::array<const NodeValues*, 6>& parts) const {
-    // In vector lanes over the wavelengths, in chunks: first the interpolation, then the sine, two loops whose
+    // In vector lanes over the wavelengths, in chunks: first the interpolations, then the sine, loops whose
     // iterations are short enough to overlap in the processor.
     constexpr int kParts = Kind == Oscillation::fringe ? 1 : Kind == Oscillation::rotation ? 2 : Kind == Oscillation::plate_inactive ? 3 : 6;
     const double* basis = nodes.basis();
@@ -140,17 +147,14 @@ Eigen::Vector3d NodeColour::oscillating_sum(const SpectralNodes& nodes, const No
     for (std::size_t begin = 0; begin < count; begin += kChunk) {
         const std::size_t length = std::min(kChunk, count - begin);
         std::array<double, kChunk> theta, v0, v1, v2, v3, v4, v5;
-#pragma omp simd
-        for (std::size_t i = 0; i < length; ++i) {
-            theta[i] = interpolate_at(basis, stride, begin + i, angle);
-            v0[i] = interpolate_at(basis, stride, begin + i, p0);
-            if constexpr (kParts > 1) v1[i] = interpolate_at(basis, stride, begin + i, p1);
-            if constexpr (kParts > 2) v2[i] = interpolate_at(basis, stride, begin + i, p2);
-            if constexpr (kParts > 3) {
-                v3[i] = interpolate_at(basis, stride, begin + i, p3);
-                v4[i] = interpolate_at(basis, stride, begin + i, p4);
-                v5[i] = interpolate_at(basis, stride, begin + i, p5);
-            }
+        interpolate_chunk(basis, stride, begin, length, angle, theta.data());
+        interpolate_chunk(basis, stride, begin, length, p0, v0.data());
+        if constexpr (kParts > 1) interpolate_chunk(basis, stride, begin, length, p1, v1.data());
+        if constexpr (kParts > 2) interpolate_chunk(basis, stride, begin, length, p2, v2.data());
+        if constexpr (kParts > 3) {
+            interpolate_chunk(basis, stride, begin, length, p3, v3.data());
+            interpolate_chunk(basis, stride, begin, length, p4, v4.data());
+            interpolate_chunk(basis, stride, begin, length, p5, v5.data());
         }
         const double *w_x = channel_weights_[0].data() + begin, *w_y = channel_weights_[1].data() + begin;
         const double* w_z = channel_weights_[2].data() + begin;
