@@ -353,6 +353,10 @@ void side_transmission(const SampleCrystal& crystal, const PolarizerPair& polars
                 coupled_p0[i] = k0d * c0 * e10 * t1;
                 coupled_p1[i] = k0d * c1 * e11 * t0;
                 coupling_product[i] = k0d * c0 * k0d * c1;
+                // As without activity, the transmission's slot only tells whether they are finite.
+                out[i] = field_s0[i] + field_s1[i] + field_p0[i] + field_p1[i] + phase[i] + coupled_s0[i] + coupled_s1[i] + coupled_p0[i] +
+                         coupled_p1[i] + coupling_product[i];
+                continue;
             }
             const ActiveAmplitudes m = active_amplitudes(t0, t1, 0.5 * k0d * (qf[i] - qs[i]), k0d * c0, k0d * c1);
             // The field leaving the slab, R + i·I in (ŝ, ρ̂).

@@ -104,9 +104,9 @@ enum class KernelOutput {
     transmission,  // the transmission
     terms,         // the transmission, scratch.mean and scratch.modulation (no plate), and with optical activity
                    // scratch.sine_modulation and 2W in scratch.phase_difference
-    fields,        // scratch.mode_field and scratch.phase_difference, with optical activity also scratch.coupled_field,
-                   // scratch.coupling_product and the transmission (no plate); for an inactive crystal the
-                   // transmission's slot holds a number that is finite exactly where the fields and the phase are
+    fields,        // scratch.mode_field and scratch.phase_difference, with optical activity also scratch.coupled_field
+                   // and scratch.coupling_product; the transmission's slot holds a number that is finite exactly
+                   // where all of them are
 };
 
 /// Transmission of every sample into scratch.transmission[side] (but see KernelOutput::fields). With `warm` (allowed when
