@@ -55,6 +55,10 @@ ConicalPlan plan_conical(const ConicalRequest& request, const MineralCatalog& ca
         throw InputError(crystal.name + " is " + std::string(optical_class_name(crystal.optical_class)) +
                          ": conical refraction needs a biaxial crystal (e.g. KGd(WO4)2, KY(WO4)2, KTP, LBO, aragonite)");
     }
+    if (crystal.optically_active()) {
+        throw InputError(crystal.name + " is optically active, which conical refraction does not model yet (its rings assume the "
+                                        "inactive crystal's waves, docs/conical.md); take an inactive biaxial crystal");
+    }
     ConicalPlan plan;
     plan.request = request;
     plan.crystal = &crystal;

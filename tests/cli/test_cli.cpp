@@ -388,6 +388,13 @@ TEST_F(Cli, ConicalRejectsBadInput) {
     expect_rejected("conical --mode ray --pinhole 30mm --length 20mm" + output, {"pinhole", "larger than the slab"});
     expect_rejected("conical --polarization sideways" + output, {"--polarization"});
     expect_rejected("conical --mode particle" + output, {"--mode"});
+    // An optically active biaxial crystal: the rings would ignore its activity.
+    const fs::path minerals = scratch() / "active-minerals";
+    fs::create_directories(minerals);
+    std::ofstream(minerals / "active-kgw.txt") << read_text(fs::path(PETROSCOPE_SOURCE_DIR) / "minerals" / "kgd-wo4-2.txt")
+                                               << "\nrotatory_power_x: constant 5\nrotatory_power_x.source: test\nrotatory_power_y: constant 5\n"
+                                                  "rotatory_power_y.source: test\nrotatory_power_z: constant 5\nrotatory_power_z.source: test\n";
+    expect_rejected("--minerals-dir " + quoted(minerals) + " conical --crystal KGW" + output, {"KGd(WO4)2", "optically active", "conical"});
 }
 
 }  // namespace
