@@ -151,6 +151,9 @@ double solve_level(const PhotoLevel& level, PhotoParameters& values, const Conos
     return summary.IsSolutionUsable() ? summary.final_cost : std::numeric_limits<double>::infinity();
 }
 
+/// A thickness within this relative distance of a bound counts as on it.
+constexpr double kOnBound = 1e-6;
+
 /// A local minimum of the cost over thickness and its basin: the thicknesses of the neighbouring local
 /// maxima (or the ends of the scan), between which a refinement stays on this minimum.
 struct ThicknessMinimum {
@@ -604,9 +607,32 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
         }
         reached(0.55 + 0.15 * static_cast<double>(k + 1) / static_cast<double>(minima.size()));
     }
-    const double best_cost = solve_level(*fine, result.values, options, basin_bounds(minima[best]), 40, 1e-8, result.iterations, relay) /
-                             std::max(1, 3 * fine->usable_count);
-    result.candidates[best].thickness_um = at(result.values, PhotoParameter::thickness_um);
+    // The full photo with every parameter free may put the minimum beyond the basin the scan found (its
+    // neighbouring maximum moves with the geometry): a refinement that ends on a basin bound that is not the end
+    // of the scanned range goes on with that side open to the range's end, once per side.
+    Bounds final_bounds = basin_bounds(minima[best]);
+    double best_cost = solve_level(*fine, result.values, options, final_bounds, 40, 1e-8, result.iterations, relay);
+    const std::size_t thickness_index = index_of(PhotoParameter::thickness_um);
+    for (int side = 0; side < 2; ++side) {
+        double& lower = final_bounds.lower[thickness_index];
+        double& upper = final_bounds.upper[thickness_index];
+        const double thickness_um = at(result.values, PhotoParameter::thickness_um);
+        const bool on_lower = lower > bounds.lower[thickness_index] && thickness_um <= lower * (1.0 + kOnBound);
+        const bool on_upper = upper < bounds.upper[thickness_index] && thickness_um >= upper * (1.0 - kOnBound);
+        if (!on_lower && !on_upper) break;
+        (on_lower ? lower : upper) = on_lower ? bounds.lower[thickness_index] : bounds.upper[thickness_index];
+        best_cost = solve_level(*fine, result.values, options, final_bounds, 40, 1e-8, result.iterations, relay);
+    }
+    best_cost /= std::max(1, 3 * fine->usable_count);
+    const double fitted_um = at(result.values, PhotoParameter::thickness_um);
+    // The refinement may leave the searched range (its bounds are half and twice its ends), but the search did
+    // not look there for other minima.
+    if (thickness_free && (fitted_um <= scan_min_um * (1.0 + kOnBound) || fitted_um >= scan_max_um * (1.0 - kOnBound))) {
+        result.warnings.push_back("the thickness, " + format_significant(fitted_um, 6) + " um, is at or beyond an end of the searched range (" +
+                                  format_significant(scan_min_um, 4) + " to " + format_significant(scan_max_um, 4) +
+                                  " um), where no other minimum was looked for: search a range that contains it (--thickness-range; thickness_range_um in Python)");
+    }
+    result.candidates[best].thickness_um = fitted_um;
     std::sort(result.candidates.begin(), result.candidates.end(),
               [](const ThicknessCandidate& a, const ThicknessCandidate& b) { return a.cost < b.cost; });
     reached(0.95);
@@ -630,7 +656,7 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
         const detail::PhotoLevel encoded_level(model, fine->evaluator.lattice(), encoded, 0.0,
                                                at(start, PhotoParameter::gamma), options.saturated_level);
         PhotoParameters refitted = result.values;
-        solve_level(encoded_level, refitted, options, basin_bounds(minima[best]), 40, 1e-8, result.iterations, relay);
+        solve_level(encoded_level, refitted, options, final_bounds, 40, 1e-8, result.iterations, relay);
         PhotoParameters shift{};
         for (std::size_t k = 0; k < shift.size(); ++k) shift[k] = refitted[k] - result.values[k];
         result.encoding_shift = shift;

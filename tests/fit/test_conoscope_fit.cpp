@@ -163,6 +163,20 @@ TEST(ConoscopeFit, CentredUniaxialScaleFreeIsUnidentified) {
     EXPECT_NEAR(ratio, truth, 0.01 * truth);
 }
 
+// A photo whose thickness lies beyond the searched range (10 µm; the range 0.83–7.5 µm around a start of 2.5 µm):
+// the refinement follows the cost past the range's end, from the scan's minimum nearest it, to the photo's
+// thickness, and the result says that the search did not look there.
+TEST(ConoscopeFit, AThicknessBeyondTheSearchedRangeIsReported) {
+    const FitCase c{"calcite", Cut::optic_axis, 10.0, 0.25, 6, -5, 0.95, 8.0, 0.0, 1.8, {1.2, 0.85, 1.1}, true, 128};
+    const ConoscopeFitResult result = fit_synthetic(c, c.size_px).result;
+    const double thickness_um = at(result.values, PhotoParameter::thickness_um);
+    for (const auto& warning : result.warnings) std::printf("warning: %s\n", warning.c_str());
+    std::printf("thickness %.4f um (the range ends at 7.5 um)\n", thickness_um);
+    EXPECT_GE(thickness_um, 7.5);
+    EXPECT_TRUE(std::any_of(result.warnings.begin(), result.warnings.end(),
+                            [](const std::string& w) { return w.find("beyond an end of the searched range (0.8333 to 7.5 um)") != std::string::npos; }));
+}
+
 // The encoding check's premise: the best fit's rendering (render_conoscope_photo) is the model the fit
 // matched at its samples, so an encoding that changes nothing shifts nothing.
 TEST(ConoscopeFit, EncodingCheckOfALosslessEncodingShiftsNothing) {
