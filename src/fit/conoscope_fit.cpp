@@ -1,6 +1,7 @@
 #include "petroscope/fit/conoscope_fit.hpp"
 
 #include "cancel_between_iterations.hpp"
+#include "figure_location.hpp"
 #include "photo_cost.hpp"
 #include "photo_model.hpp"
 #include "solver_messages.hpp"
@@ -504,6 +505,13 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
                          " ... " + format_significant(bounds.upper[k], 6) + " for this photo and thickness range");
     }
     PhotoParameters start = options.initial;
+    const bool centre_free = options.free[index_of(PhotoParameter::center_x_px)] && options.free[index_of(PhotoParameter::center_y_px)];
+    const bool untilted = at(start, PhotoParameter::tilt_deg) == 0.0 && !options.free[index_of(PhotoParameter::tilt_deg)];
+    if (options.locate_centre && centre_free && untilted) {
+        const Eigen::Vector2d located = detail::half_turn_symmetry_centre_px(photo);
+        at(start, PhotoParameter::center_x_px) = located.x();
+        at(start, PhotoParameter::center_y_px) = located.y();
+    }
     const Eigen::Vector2d centre(at(start, PhotoParameter::center_x_px), at(start, PhotoParameter::center_y_px));
     const bool sharp_stop = model.field_stop == FieldStop::sharp;
     const double edge = sharp_stop ? radius_where_light_falls(photo, centre, 0.2, at(start, PhotoParameter::field_radius_px)) : 0.0;

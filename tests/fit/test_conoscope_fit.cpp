@@ -103,13 +103,16 @@ TEST_P(ConoscopeFitTest, ThicknessWithinOnePercentAndTwoSigma) {
 }
 
 // Each path of the fit once, in every CI run and its sanitizer build: a centred uniaxial figure with
-// the scale known, an off-centre (tilted) uniaxial figure and a biaxial figure with the scale fitted.
+// the scale known, an off-centre (tilted) uniaxial figure and a biaxial figure with the scale fitted, and a
+// figure a fifth of the frame off its centre and cut by its edge, which the fit finds by itself (the start is
+// the frame's centre).
 INSTANTIATE_TEST_SUITE_P(
     Figures, ConoscopeFitTest,
     ::testing::Values(
         FitCase{"calcite", Cut::optic_axis, 10.0, 2.0, 6, -5, 0.95, 8.0, 0.0, 1.8, {1.2, 0.85, 1.1}, true},
         FitCase{"calcite", Cut::optic_axis, 100.0, 2.0, 5, -6, 1.1, 7.0, 20.0, 2.1, {1.15, 0.9, 1.05}, false},
-        FitCase{"muscovite", Cut::acute_bisectrix, 30.0, 2.0, 4, 6, 0.95, 9.0, 0.0, 2.2, {1.1, 0.95, 0.85}, false}));
+        FitCase{"muscovite", Cut::acute_bisectrix, 30.0, 2.0, 4, 6, 0.95, 9.0, 0.0, 2.2, {1.1, 0.95, 0.85}, false},
+        FitCase{"calcite", Cut::optic_axis, 30.0, 2.0, 40, -30, 1.0, 7.0, 0.0, 2.1, {1.15, 0.9, 1.05}, false, 192}));
 
 // The rest of the acceptance cases, slower (the release run, docs/testing.md): thick and tilted quartz,
 // thicker muscovite, and the cases where the photo's JPEG encoding dominates the error.

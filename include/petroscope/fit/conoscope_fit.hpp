@@ -104,6 +104,9 @@ struct ConoscopeFitOptions {
     double thickness_min_um = 5.0;    // the global search covers this range
     double thickness_max_um = 5000.0;
     int candidates = 3;               // thickness minima refined by Ceres
+    /// With the centre free and the cut not tilted (tilt held at 0), start the centre where the photo is most nearly
+    /// symmetric under a half turn (docs/fitting.md, "Finding the figure"), not at initial's centre.
+    bool locate_centre = true;
     double robust_scale = 0.05;       // Cauchy loss: residuals (in photo values, 0 … 1) beyond this count less
     double saturated_level = 0.995;   // pixels with a channel at or above this are not used
     /// The lossy encoding the photo went through (a JPEG's: io/jpeg_encoding.hpp), on camera values
