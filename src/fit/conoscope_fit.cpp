@@ -508,9 +508,10 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
     const bool centre_free = options.free[index_of(PhotoParameter::center_x_px)] && options.free[index_of(PhotoParameter::center_y_px)];
     const bool untilted = at(start, PhotoParameter::tilt_deg) == 0.0 && !options.free[index_of(PhotoParameter::tilt_deg)];
     if (options.locate_centre && centre_free && untilted) {
-        const Eigen::Vector2d located = detail::half_turn_symmetry_centre_px(photo);
-        at(start, PhotoParameter::center_x_px) = located.x();
-        at(start, PhotoParameter::center_y_px) = located.y();
+        if (const std::optional<Eigen::Vector2d> located = detail::half_turn_symmetry_centre_px(photo)) {
+            at(start, PhotoParameter::center_x_px) = located->x();
+            at(start, PhotoParameter::center_y_px) = located->y();
+        }
     }
     const Eigen::Vector2d centre(at(start, PhotoParameter::center_x_px), at(start, PhotoParameter::center_y_px));
     const bool sharp_stop = model.field_stop == FieldStop::sharp;
@@ -617,7 +618,7 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
     }
     // The full photo with every parameter free may put the minimum beyond the basin the scan found (its
     // neighbouring maximum moves with the geometry): a refinement that ends on a basin bound that is not the end
-    // of the scanned range goes on with that side open to the range's end, once per side.
+    // of the scanned range goes on with that side open out to the refinement's bound, once per side.
     Bounds final_bounds = basin_bounds(minima[best]);
     double best_cost = solve_level(*fine, result.values, options, final_bounds, 40, 1e-8, result.iterations, relay);
     const std::size_t thickness_index = index_of(PhotoParameter::thickness_um);
@@ -638,7 +639,8 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
     if (thickness_free && (fitted_um <= scan_min_um * (1.0 + kOnBound) || fitted_um >= scan_max_um * (1.0 - kOnBound))) {
         result.warnings.push_back("the thickness, " + format_significant(fitted_um, 6) + " um, is at or beyond an end of the searched range (" +
                                   format_significant(scan_min_um, 4) + " to " + format_significant(scan_max_um, 4) +
-                                  " um), where no other minimum was looked for: search a range that contains it (--thickness-range; thickness_range_um in Python)");
+                                  " um), where no other minimum was looked for: search a range that contains it "
+                                  "(--thickness-range; thickness_range_um in Python)");
     }
     result.candidates[best].thickness_um = fitted_um;
     std::sort(result.candidates.begin(), result.candidates.end(),

@@ -76,10 +76,11 @@ double pixel_coordinate(int s, int factor) { return (0.5 * s + 0.5) * factor; }
 
 }  // namespace
 
-Eigen::Vector2d half_turn_symmetry_centre_px(const Image& photo) {
+std::optional<Eigen::Vector2d> half_turn_symmetry_centre_px(const Image& photo) {
     const int longest = std::max(photo.width, photo.height);
     const Grid coarse = block_luminance(photo, std::max(1, (longest + 63) / 64));
     const Best rough = best_over(coarse, 0, 2 * coarse.width - 2, 0, 2 * coarse.height - 2);
+    if (!std::isfinite(rough.correlation)) return std::nullopt;
     const Grid fine = block_luminance(photo, std::max(1, (longest + 127) / 128));
     // The rough centre on the fine grid, searched within two coarse blocks of it.
     const double ratio = static_cast<double>(coarse.factor) / fine.factor;
@@ -87,7 +88,7 @@ Eigen::Vector2d half_turn_symmetry_centre_px(const Image& photo) {
     const int reach = static_cast<int>(std::ceil(4.0 * ratio));
     const int s_x = fine_index(rough.s_x), s_y = fine_index(rough.s_y);
     const Best refined = best_over(fine, s_x - reach, s_x + reach, s_y - reach, s_y + reach);
-    return {pixel_coordinate(refined.s_x, fine.factor), pixel_coordinate(refined.s_y, fine.factor)};
+    return Eigen::Vector2d(pixel_coordinate(refined.s_x, fine.factor), pixel_coordinate(refined.s_y, fine.factor));
 }
 
 }  // namespace petroscope::detail

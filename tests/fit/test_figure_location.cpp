@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <optional>
 
 namespace petroscope {
 namespace {
@@ -36,10 +38,17 @@ TEST_P(FigureLocationTest, TheHalfTurnSymmetryCentreIsTheFiguresCentre) {
     truth.gains = {1.15, 0.9, 1.05};
     truth.supersampling = 2;
     const Image photo = testing::synthesize_photo(testing::photo_model(testing::fit_minerals().find(c.mineral), c.cut), light, truth, kSize, 5);
-    const Eigen::Vector2d located = detail::half_turn_symmetry_centre_px(photo);
-    const Eigen::Vector2d expected(0.5 * kSize + c.center_dx_px, 0.5 * kSize + c.center_dy_px);
+    const std::optional<Eigen::Vector2d> found = detail::half_turn_symmetry_centre_px(photo);
+    ASSERT_TRUE(found.has_value());
+    const Eigen::Vector2d located = *found, expected(0.5 * kSize + c.center_dx_px, 0.5 * kSize + c.center_dy_px);
     std::printf("%s %g um: located (%.2f, %.2f) for (%.1f, %.1f)\n", c.mineral, c.thickness_um, located.x(), located.y(), expected.x(), expected.y());
     EXPECT_LE((located - expected).norm(), 1.5);
+}
+
+TEST(FigureLocation, AFlatPhotoHasNoCentre) {
+    Image flat(64, 48, 3);
+    std::fill(flat.pixels.begin(), flat.pixels.end(), 0.25f);
+    EXPECT_FALSE(detail::half_turn_symmetry_centre_px(flat).has_value());
 }
 
 INSTANTIATE_TEST_SUITE_P(
