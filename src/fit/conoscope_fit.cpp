@@ -155,6 +155,27 @@ double solve_level(const PhotoLevel& level, PhotoParameters& values, const Conos
 /// A thickness within this relative distance of a bound counts as on it.
 constexpr double kOnBound = 1e-6;
 
+/// The refinement of `values` on `level` within `basin`. With every parameter free the basin's edge moves (its
+/// neighbouring maximum moves with the geometry), so a refinement that ends on a thickness bound of the basin that is
+/// not also `outer`'s goes on with that side opened out to `outer`'s, once per side. `basin` ends as the bounds the
+/// last refinement used; returns its cost.
+double refine_in_basin(const PhotoLevel& level, PhotoParameters& values, const ConoscopeFitOptions& options, const Bounds& outer, Bounds& basin,
+                       int& iterations, ProgressRelay& relay) {
+    const std::size_t k = index_of(PhotoParameter::thickness_um);
+    double cost = solve_level(level, values, options, basin, 40, 1e-8, iterations, relay);
+    for (int side = 0; side < 2; ++side) {
+        if (basin.lower[k] > outer.lower[k] && values[k] <= basin.lower[k] * (1.0 + kOnBound)) {
+            basin.lower[k] = outer.lower[k];
+        } else if (basin.upper[k] < outer.upper[k] && values[k] >= basin.upper[k] * (1.0 - kOnBound)) {
+            basin.upper[k] = outer.upper[k];
+        } else {
+            break;
+        }
+        cost = solve_level(level, values, options, basin, 40, 1e-8, iterations, relay);
+    }
+    return cost;
+}
+
 /// A local minimum of the cost over thickness and its basin: the thicknesses of the neighbouring local
 /// maxima (or the ends of the scan), between which a refinement stays on this minimum.
 struct ThicknessMinimum {
@@ -616,23 +637,9 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
         }
         reached(0.55 + 0.15 * static_cast<double>(k + 1) / static_cast<double>(minima.size()));
     }
-    // The full photo with every parameter free may put the minimum beyond the basin the scan found (its
-    // neighbouring maximum moves with the geometry): a refinement that ends on a basin bound that is not the end
-    // of the scanned range goes on with that side open out to the refinement's bound, once per side.
     Bounds final_bounds = basin_bounds(minima[best]);
-    double best_cost = solve_level(*fine, result.values, options, final_bounds, 40, 1e-8, result.iterations, relay);
-    const std::size_t thickness_index = index_of(PhotoParameter::thickness_um);
-    for (int side = 0; side < 2; ++side) {
-        double& lower = final_bounds.lower[thickness_index];
-        double& upper = final_bounds.upper[thickness_index];
-        const double thickness_um = at(result.values, PhotoParameter::thickness_um);
-        const bool on_lower = lower > bounds.lower[thickness_index] && thickness_um <= lower * (1.0 + kOnBound);
-        const bool on_upper = upper < bounds.upper[thickness_index] && thickness_um >= upper * (1.0 - kOnBound);
-        if (!on_lower && !on_upper) break;
-        (on_lower ? lower : upper) = on_lower ? bounds.lower[thickness_index] : bounds.upper[thickness_index];
-        best_cost = solve_level(*fine, result.values, options, final_bounds, 40, 1e-8, result.iterations, relay);
-    }
-    best_cost /= std::max(1, 3 * fine->usable_count);
+    const double best_cost = refine_in_basin(*fine, result.values, options, bounds, final_bounds, result.iterations, relay) /
+                             std::max(1, 3 * fine->usable_count);
     const double fitted_um = at(result.values, PhotoParameter::thickness_um);
     // The refinement may leave the searched range (its bounds are half and twice its ends), but the search did
     // not look there for other minima.

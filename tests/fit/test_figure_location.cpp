@@ -29,14 +29,9 @@ TEST_P(FigureLocationTest, TheHalfTurnSymmetryCentreIsTheFiguresCentre) {
     const LocationCase& c = GetParam();
     constexpr int kSize = 192;
     static const testing::PhotoLight light = testing::white_light();
-    testing::PhotoTruth truth;
-    truth.thickness_um = c.thickness_um;
-    truth.center_dx_px = c.center_dx_px;
-    truth.center_dy_px = c.center_dy_px;
-    truth.radius_scale = c.radius_scale;
-    truth.rotation_deg = c.rotation_deg;
-    truth.gains = {1.15, 0.9, 1.05};
-    truth.supersampling = 2;
+    const testing::PhotoTruth truth{.thickness_um = c.thickness_um, .center_dx_px = c.center_dx_px, .center_dy_px = c.center_dy_px,
+                                    .radius_scale = c.radius_scale, .rotation_deg = c.rotation_deg, .gains = {1.15, 0.9, 1.05},
+                                    .supersampling = 2};
     const Image photo = testing::synthesize_photo(testing::photo_model(testing::fit_minerals().find(c.mineral), c.cut), light, truth, kSize, 5);
     const std::optional<Eigen::Vector2d> found = detail::half_turn_symmetry_centre_px(photo);
     ASSERT_TRUE(found.has_value());
