@@ -24,7 +24,7 @@ namespace petroscope::cli {
 namespace {
 
 struct GrainFitOptions {
-    std::vector<std::string> photos, stages, plates, regions, masks;
+    std::vector<std::string> photos, stages, plates, regions, masks, reference_regions, reference_masks;
     std::string mineral, orientation, euler, thickness_range = "1um:200um", output_dir, handedness = "right";
     double plate_deg = 45.0, condenser_na = 0.0, polarizer_deg = 0.0, analyzer_deg = 90.0;
     bool exposure_free = false, json = false, verbose = false;
@@ -41,40 +41,90 @@ const std::string& per_photo(const std::vector<std::string>& values, std::size_t
     return values[values.size() == 1 ? 0 : k];
 }
 
-/// "x,y,w,h" in pixels.
-std::array<int, 4> parse_region(const std::string& text) {
+/// "x,y,w,h" in pixels, read for `option`.
+std::array<int, 4> parse_region(const std::string& option, const std::string& text) {
     const auto parts = split(text, ',');
     std::array<int, 4> region{};
     for (std::size_t i = 0; i < 4; ++i) {
         const auto value = parts.size() == 4 ? parse_double(parts[i]) : std::nullopt;
         if (!value || *value != std::floor(*value) || std::abs(*value) > 1e6) {
-            throw InputError("--region " + quote_input(text) + ": expected X,Y,WIDTH,HEIGHT in whole pixels (top-left corner first), e.g. 120,80,40,40");
+            throw InputError(option + " " + quote_input(text) + ": expected X,Y,WIDTH,HEIGHT in whole pixels (top-left corner first), e.g. 120,80,40,40");
         }
         region[i] = static_cast<int>(*value);
     }
     return region;
 }
 
+/// Where a region is marked: by masks (`--mask`) or rectangles (`--region`), one for all photos or one per photo.
+struct RegionOptions {
+    const std::vector<std::string>& masks;
+    const std::vector<std::string>& regions;
+    std::string mask_option, region_option;
+};
+
+/// The mask of photo k's region: its mask image, its rectangle, or (neither given) the whole photo.
+Image region_mask(const RegionOptions& where, std::size_t k, std::size_t photos, const std::string& file, const Image& photo) {
+    if (!where.masks.empty()) {
+        const std::string& mask_file = per_photo(where.masks, k, where.mask_option, photos);
+        Image mask = with_option(where.mask_option, [&] { return read_image(mask_file); });
+        if (mask.width != photo.width || mask.height != photo.height) {
+            throw InputError(where.mask_option + " " + mask_file + ": " + std::to_string(mask.width) + "x" + std::to_string(mask.height) +
+                             ", but the photo " + file + " is " + std::to_string(photo.width) + "x" + std::to_string(photo.height));
+        }
+        return mask;
+    }
+    if (!where.regions.empty()) {
+        const std::array<int, 4> r = parse_region(where.region_option, per_photo(where.regions, k, where.region_option, photos));
+        return with_option(where.region_option, [&] { return rectangle_mask(photo.width, photo.height, r[0], r[1], r[2], r[3]); });
+    }
+    Image whole(photo.width, photo.height, 1);
+    std::fill(whole.pixels.begin(), whole.pixels.end(), 1.0f);
+    return whole;
+}
+
 /// The grain's colour in photo k, from its region or mask.
 GrainColour measure(const GrainFitOptions& options, std::size_t k, const Image& photo) {
     const std::string& file = options.photos[k];
     if (photo.width == 0 || photo.height == 0) throw InputError("--photo " + file + ": the image is empty");
-    Image mask;
-    if (!options.masks.empty()) {
-        const std::string& mask_file = per_photo(options.masks, k, "--mask", options.photos.size());
-        mask = with_option("--mask", [&] { return read_image(mask_file); });
-        if (mask.width != photo.width || mask.height != photo.height) {
-            throw InputError("--mask " + mask_file + ": " + std::to_string(mask.width) + "x" + std::to_string(mask.height) + ", but the photo " + file +
-                             " is " + std::to_string(photo.width) + "x" + std::to_string(photo.height));
-        }
-    } else if (!options.regions.empty()) {
-        const std::array<int, 4> r = parse_region(per_photo(options.regions, k, "--region", options.photos.size()));
-        mask = with_option("--region", [&] { return rectangle_mask(photo.width, photo.height, r[0], r[1], r[2], r[3]); });
-    } else {
-        mask = Image(photo.width, photo.height, 1);
-        std::fill(mask.pixels.begin(), mask.pixels.end(), 1.0f);
-    }
+    const Image mask = region_mask({options.masks, options.regions, "--mask", "--region"}, k, options.photos.size(), file, photo);
     return with_option("--photo " + file, [&] { return grain_colour(photo, mask); });
+}
+
+/// The reference region's colour in photo k, if the options give it there ("none" for a photo without).
+std::optional<GrainColour> measure_reference(const GrainFitOptions& options, std::size_t k, const Image& photo) {
+    const RegionOptions where{options.reference_masks, options.reference_regions, "--reference-mask", "--reference-region"};
+    const std::vector<std::string>& given = where.masks.empty() ? where.regions : where.masks;
+    if (given.empty() || per_photo(given, k, where.masks.empty() ? where.region_option : where.mask_option, options.photos.size()) == "none") {
+        return std::nullopt;
+    }
+    const Image mask = region_mask(where, k, options.photos.size(), options.photos[k], photo);
+    return with_option("--photo " + options.photos[k] + " (reference region)", [&] { return grain_colour(photo, mask); });
+}
+
+/// Photo k's reference region: its measured and calibrated model colours, or null where it is not given.
+nlohmann::json reference_json(const GrainPhoto& photo, const OrthoscopeFitResult& result, std::size_t k) {
+    if (!photo.reference || !result.calibration) return nullptr;
+    const Eigen::Vector3d& measured = photo.reference->mean_code;
+    const Eigen::Vector3d& model = *result.calibration->model_code[k];
+    return {{"pixels", photo.reference->pixels},
+            {"mean_code", {measured.x(), measured.y(), measured.z()}},
+            {"model_code", {model.x(), model.y(), model.z()}}};
+}
+
+/// The camera's calibration, or null without a reference region.
+nlohmann::json calibration_json(const OrthoscopeFitResult& result) {
+    if (!result.calibration) return nullptr;
+    const CameraCalibration& camera = *result.calibration;
+    nlohmann::json fitted = nlohmann::json::array();
+    for (std::size_t c = 0; c < 3; ++c) {
+        if (camera.fitted_with_grain[c]) fitted.push_back(std::string(1, "RGB"[c]));
+    }
+    return {{"channel_gains", {camera.channel_gains.x(), camera.channel_gains.y(), camera.channel_gains.z()}},
+            {"gains_fitted_with_the_grain", fitted},
+            {"contrast", fitted_value_json(camera.contrast)},
+            {"reference_rms_code", camera.rms_code},
+            {"meaning", "code = C(encode_srgb(gain * linear display colour)), C(y) = y^a / (y^a + (1 - y)^a) with a the contrast; the gains "
+                        "at the reference region's light (the grain's may differ: 'exposure'); see docs/fitting.md"}};
 }
 
 nlohmann::json report_json(const GrainFitOptions& options, const std::vector<GrainPhoto>& photos, const OrthoscopeFitOptions& fit,
@@ -88,7 +138,8 @@ nlohmann::json report_json(const GrainFitOptions& options, const std::vector<Gra
                                  {"pixels", photo.colour.pixels},
                                  {"pixels_saturated", photo.colour.saturated},
                                  {"mean_code", {photo.colour.mean_code.x(), photo.colour.mean_code.y(), photo.colour.mean_code.z()}},
-                                 {"model_code", {result.model_code[k].x(), result.model_code[k].y(), result.model_code[k].z()}}});
+                                 {"model_code", {result.model_code[k].x(), result.model_code[k].y(), result.model_code[k].z()}},
+                                 {"reference", reference_json(photo, result, k)}});
     }
     nlohmann::json candidates = nlohmann::json::array();
     for (const GrainCandidate& candidate : result.candidates) {
@@ -117,23 +168,30 @@ nlohmann::json report_json(const GrainFitOptions& options, const std::vector<Gra
                                                                                      : "unused (orientation given)"},
             {"euler_zyz_deg", {euler.x(), euler.y(), euler.z()}},
             {"exposure", fitted_value_json(result.exposure)},
+            {"camera_calibration", calibration_json(result)},
             {"candidates", candidates},
             {"rms_code", result.rms_code},
             {"warnings", result.warnings},
             {"seconds", seconds},
-            {"model", "mean sRGB code of the grain = encode_srgb(exposure * display(XYZ of the orthoscope's single-pass transmission)); "
-                      "see docs/fitting.md"},
+            {"model", "mean sRGB code of the grain = encode_srgb(exposure * display(XYZ of the orthoscope's single-pass transmission)), through "
+                      "the calibrated camera when a reference region is given; see docs/fitting.md"},
             {"sigma_meaning", "1 sigma from the Gauss-Newton covariance, residual variance floored at one code level"}};
 }
 
-/// Swatches: a row per photo, the measured colour left and the model's right, 64 px each.
+/// Swatches, 64 px each, a row per photo: the grain's measured colour and the model's; with a reference
+/// region, then the reference's measured and calibrated model colours (black where a photo has none).
 Image swatches(const std::vector<GrainPhoto>& photos, const OrthoscopeFitResult& result) {
     constexpr int side = 64;
-    Image image(2 * side, side * static_cast<int>(photos.size()), 3);
+    const int columns = result.calibration ? 4 : 2;
+    Image image(columns * side, side * static_cast<int>(photos.size()), 3);
     for (std::size_t k = 0; k < photos.size(); ++k) {
+        const Eigen::Vector3d black = Eigen::Vector3d::Zero();
+        const std::array<Eigen::Vector3d, 4> codes{
+            photos[k].colour.mean_code, result.model_code[k], photos[k].reference ? photos[k].reference->mean_code : black,
+            result.calibration && result.calibration->model_code[k] ? *result.calibration->model_code[k] : black};
         for (int y = 0; y < side; ++y) {
-            for (int x = 0; x < 2 * side; ++x) {
-                const Eigen::Vector3d& code = x < side ? photos[k].colour.mean_code : result.model_code[k];
+            for (int x = 0; x < columns * side; ++x) {
+                const Eigen::Vector3d& code = codes[static_cast<std::size_t>(x / side)];
                 for (int c = 0; c < 3; ++c) image.at(x, static_cast<int>(k) * side + y, c) = static_cast<float>(decode_srgb(code[c]));
             }
         }
@@ -144,6 +202,9 @@ Image swatches(const std::vector<GrainPhoto>& photos, const OrthoscopeFitResult&
 // The request of the options; the grain's colour in each photo is measured here.
 GrainFitRequest grain_fit_request(const GrainFitOptions& options) {
     if (!options.masks.empty() && !options.regions.empty()) throw InputError("--mask and --region: give one or the other");
+    if (!options.reference_masks.empty() && !options.reference_regions.empty()) {
+        throw InputError("--reference-mask and --reference-region: give one or the other");
+    }
     GrainFitRequest request;
     request.mineral = options.mineral;
     request.exposure_free = options.exposure_free;
@@ -169,6 +230,7 @@ GrainFitRequest grain_fit_request(const GrainFitOptions& options) {
         photo.label = options.photos[k];
         const Image image = with_option("--photo", [&] { return read_image(options.photos[k]); });
         photo.colour = measure(options, k, image);
+        photo.reference = measure_reference(options, k, image);
         if (!options.stages.empty()) {
             const std::string& text = per_photo(options.stages, k, "--stage-deg", options.photos.size());
             const auto value = parse_double(text);
@@ -218,7 +280,13 @@ void run_fit_orthoscope(const GrainFitOptions& options, const std::string& miner
         if (fit.orientation == GrainOrientation::free) {
             for (int a = 0; a < 3; ++a) std::cout << "  euler_deg[" << a << "] = " << fitted_value_text(result.angles_deg[static_cast<std::size_t>(a)]) << '\n';
         }
-        if (fit.exposure_free) std::cout << "  exposure = " << fitted_value_text(result.exposure) << '\n';
+        if (result.exposure.free) std::cout << "  exposure = " << fitted_value_text(result.exposure) << '\n';
+        if (result.calibration) {
+            const Eigen::Vector3d& gains = result.calibration->channel_gains;
+            std::cout << "  camera: gains " << format_significant(gains.x(), 4) << ' ' << format_significant(gains.y(), 4) << ' '
+                      << format_significant(gains.z(), 4) << ", contrast " << fitted_value_text(result.calibration->contrast) << ", reference "
+                      << format_significant(255.0 * result.calibration->rms_code, 3) << " code levels rms\n";
+        }
         for (const std::string& warning : result.warnings) std::cout << "warning: " << warning << '\n';
         std::cout << "wrote " << (folder / "report.json").string() << " and colours.png (" << format_significant(seconds, 3) << " s)\n";
     });
@@ -232,7 +300,8 @@ void add_fit_orthoscope_command(CLI::App* fit, const std::string& minerals_dir) 
         "orthoscope",
         "Fit a grain's thickness (and optic orientation) to its colours in crossed-polar photos taken at known stage\n"
         "angles, with or without an accessory plate (PNG, JPEG or TIFF, sRGB). Writes report.json and colours.png\n"
-        "(measured | model, a row per photo) into the -o folder.");
+        "(measured | model, a row per photo) into the -o folder. A reference region without birefringence calibrates\n"
+        "the camera's colours.");
     command->add_option("--photo", options->photos, "A photograph (repeat for several)")->required();
     command->add_option("--mineral", options->mineral, "Mineral name or alias")->required();
     command->add_option("--stage-deg", options->stages, "Stage angle of each photo (one for all, or one per photo; default 0)")->delimiter(',');
@@ -240,6 +309,10 @@ void add_fit_orthoscope_command(CLI::App* fit, const std::string& minerals_dir) 
     command->add_option("--plate-deg", options->plate_deg, "Slow direction of the plate, degrees from E toward N")->capture_default_str();
     command->add_option("--region", options->regions, "X,Y,WIDTH,HEIGHT of the grain in pixels (one for all photos, or one per photo)");
     command->add_option("--mask", options->masks, "Image whose non-zero pixels mark the grain (one for all photos, or one per photo)");
+    command->add_option("--reference-region", options->reference_regions,
+                        "X,Y,WIDTH,HEIGHT of a region without birefringence (a hole, an isotropic grain, a grain at extinction) that\n"
+                        "calibrates the camera: one for all photos, or one per photo (none where it is not so)");
+    command->add_option("--reference-mask", options->reference_masks, "Image marking the reference region instead (one for all, or one per photo; none)");
     command->add_option("--orientation", options->orientation, "known | max-birefringence (default) | free");
     command->add_option("--euler-deg", options->euler, "The grain's orientation, ZYZ Euler angles ALPHA,BETA,GAMMA (implies known)");
     command->add_option("--thickness-range", options->thickness_range, "The global search range, MIN:MAX with units")->capture_default_str();

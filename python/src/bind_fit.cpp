@@ -139,16 +139,24 @@ Image grain_mask(const Image& photo, const py::object& mask, const py::object& r
     return whole;
 }
 
-// Regions: one (x, y, width, height) for all photos, or a list of one per photo.
-std::vector<py::object> per_photo_region(const py::object& region, std::size_t photos) {
+// Regions: one (x, y, width, height) for all photos, or a list of one per photo (None: none in that photo).
+std::vector<py::object> per_photo_region(const py::object& region, std::size_t photos, const std::string& argument) {
+    const auto first = [&] { return py::object(region[py::int_(0)]); };
     const bool listed = (py::isinstance<py::list>(region) || py::isinstance<py::tuple>(region)) && py::len(region) > 0 &&
-                        (py::isinstance<py::list>(region[py::int_(0)]) || py::isinstance<py::tuple>(region[py::int_(0)]));
-    return listed ? per_photo(region, photos, "region") : std::vector<py::object>(photos, region);
+                        (py::isinstance<py::list>(first()) || py::isinstance<py::tuple>(first()) || first().is_none());
+    return listed ? per_photo(region, photos, argument) : std::vector<py::object>(photos, region);
+}
+
+// The reference region's colour in a photo, or none where neither its mask nor its region is given.
+std::optional<GrainColour> reference_colour(const Image& photo, const py::object& mask, const py::object& region) {
+    if (mask.is_none() && region.is_none()) return std::nullopt;
+    return grain_colour(photo, grain_mask(photo, mask, region));
 }
 
 GrainFitRequest grain_fit_request(const py::object& photos_argument, const std::string& mineral, const py::object& stage_deg,
                                   const py::object& plate, double plate_slow_deg, const py::object& mask, const py::object& region,
-                                  const std::string& orientation, const std::optional<std::array<double, 3>>& euler_zyz_deg) {
+                                  const py::object& reference_mask, const py::object& reference_region, const std::string& orientation,
+                                  const std::optional<std::array<double, 3>>& euler_zyz_deg) {
     std::vector<py::array> photos;
     if (py::isinstance<py::array>(photos_argument)) {
         photos.push_back(photos_argument.cast<py::array>());
@@ -159,18 +167,22 @@ GrainFitRequest grain_fit_request(const py::object& photos_argument, const std::
         }
     }
     if (!mask.is_none() && !region.is_none()) throw py::value_error("mask and region: give one or the other");
+    if (!reference_mask.is_none() && !reference_region.is_none()) throw py::value_error("reference_mask and reference_region: give one or the other");
     GrainFitRequest request;
     request.mineral = mineral;
     request.orientation = parse_grain_orientation(orientation);
     if (euler_zyz_deg) request.euler_zyz_deg = Eigen::Vector3d((*euler_zyz_deg)[0], (*euler_zyz_deg)[1], (*euler_zyz_deg)[2]);
     const auto stages = per_photo(stage_deg, photos.size(), "stage_deg"), plates = per_photo(plate, photos.size(), "plate");
-    const auto masks = per_photo(mask, photos.size(), "mask"), regions = per_photo_region(region, photos.size());
+    const auto masks = per_photo(mask, photos.size(), "mask"), regions = per_photo_region(region, photos.size(), "region");
+    const auto reference_masks = per_photo(reference_mask, photos.size(), "reference_mask");
+    const auto reference_regions = per_photo_region(reference_region, photos.size(), "reference_region");
     for (std::size_t k = 0; k < photos.size(); ++k) {
         const std::string label = "photos[" + std::to_string(k) + "]";
         const Image photo = image_argument(photos[k], label);
         const double stage = photo_value<double>(stages[k], "stage_deg", "an angle in degrees (or a list of one per photo)");
         const auto plate_name = photo_value<std::optional<std::string>>(plates[k], "plate", "'gypsum', 'mica', 'wedge' or None (or a list of one per photo)");
-        GrainFitPhoto fit_photo{grain_colour(photo, grain_mask(photo, masks[k], regions[k])), stage, std::nullopt, label};
+        GrainFitPhoto fit_photo{grain_colour(photo, grain_mask(photo, masks[k], regions[k])), stage, std::nullopt, label,
+                                reference_colour(photo, reference_masks[k], reference_regions[k])};
         fit_photo.plate = plate_argument(plate_name, plate_slow_deg, 0.5);
         request.photos.push_back(std::move(fit_photo));
     }
@@ -187,8 +199,24 @@ py::dict grain_fit_dict(const GrainFitPlan& plan, const OrthoscopeFitResult& res
     py::list photos, candidates;
     for (std::size_t k = 0; k < plan.photos.size(); ++k) {
         const GrainColour& colour = plan.photos[k].colour;
-        photos.append(py::dict(py::arg("mean_code") = colour.mean_code, py::arg("model_code") = result.model_code[k],
-                               py::arg("pixels") = colour.pixels, py::arg("pixels_saturated") = colour.saturated));
+        py::dict photo(py::arg("mean_code") = colour.mean_code, py::arg("model_code") = result.model_code[k], py::arg("pixels") = colour.pixels,
+                       py::arg("pixels_saturated") = colour.saturated, py::arg("reference") = py::none());
+        if (plan.photos[k].reference && result.calibration) {
+            photo["reference"] = py::dict(py::arg("mean_code") = plan.photos[k].reference->mean_code,
+                                          py::arg("model_code") = *result.calibration->model_code[k], py::arg("pixels") = plan.photos[k].reference->pixels);
+        }
+        photos.append(photo);
+    }
+    py::object calibration = py::none();
+    if (result.calibration) {
+        const CameraCalibration& camera = *result.calibration;
+        py::list with_grain;
+        for (std::size_t c = 0; c < 3; ++c) {
+            if (camera.fitted_with_grain[c]) with_grain.append(std::string(1, "RGB"[c]));
+        }
+        calibration = py::dict(py::arg("channel_gains") = camera.channel_gains, py::arg("gains_fitted_with_the_grain") = with_grain,
+                               py::arg("contrast") = camera.contrast.value, py::arg("contrast_sigma") = camera.contrast.sigma,
+                               py::arg("reference_rms_code") = camera.rms_code);
     }
     for (const GrainCandidate& c : result.candidates) {
         candidates.append(py::dict(py::arg("thickness_um") = c.thickness_um, py::arg("angles_deg") = c.angles_deg, py::arg("rms_code") = c.rms_code));
@@ -200,17 +228,19 @@ py::dict grain_fit_dict(const GrainFitPlan& plan, const OrthoscopeFitResult& res
         py::arg("angles_meaning") = plan.options.orientation == GrainOrientation::max_birefringence ? "angle_0_deg: the indicatrix X axis at stage 0, from E toward N"
                                     : plan.options.orientation == GrainOrientation::free            ? "angle_0_deg … angle_2_deg: ZYZ Euler angles of the indicatrix at stage 0"
                                                                                                      : "unused (orientation given)",
-        py::arg("photos") = photos, py::arg("candidates") = candidates, py::arg("warnings") = result.warnings));
+        py::arg("photos") = photos, py::arg("candidates") = candidates, py::arg("camera_calibration") = calibration, py::arg("warnings") = result.warnings));
     return report;
 }
 
 py::dict fit_orthoscope(const py::object& photos, const std::string& mineral, const py::object& stage_deg, const py::object& plate,
-                        double plate_slow_deg, const py::object& mask, const py::object& region, const std::string& orientation,
+                        double plate_slow_deg, const py::object& mask, const py::object& region, const py::object& reference_mask,
+                        const py::object& reference_region, const std::string& orientation,
                         const std::optional<std::array<double, 3>>& euler_zyz_deg, std::pair<double, double> thickness_range_um,
                         bool exposure_free, int candidates, double condenser_na, double polarizer_deg, double analyzer_deg,
                         const py::object& light, const std::string& handedness, const py::object& progress, bool verbose) {
     show_solver_messages(verbose);
-    GrainFitRequest request = grain_fit_request(photos, mineral, stage_deg, plate, plate_slow_deg, mask, region, orientation, euler_zyz_deg);
+    GrainFitRequest request =
+        grain_fit_request(photos, mineral, stage_deg, plate, plate_slow_deg, mask, region, reference_mask, reference_region, orientation, euler_zyz_deg);
     request.handedness = parse_handedness(handedness);
     std::tie(request.thickness_min_um, request.thickness_max_um) = thickness_range_um;
     request.exposure_free = exposure_free;
@@ -263,7 +293,7 @@ iterations, candidates, warnings; model: the best fit's photo (float32, like pho
 array carries no JPEG encoding: its systematic error is not checked (the command line's fit checks it).)");
     module.def("fit_orthoscope", &fit_orthoscope, py::arg("photos"), py::kw_only(), py::arg("mineral"), py::arg("stage_deg") = 0.0,
                py::arg("plate") = py::none(), py::arg("plate_slow_deg") = 45.0, py::arg("mask") = py::none(), py::arg("region") = py::none(),
-               py::arg("orientation") = "max-birefringence", py::arg("euler_zyz_deg") = py::none(),
+               py::arg("reference_mask") = py::none(), py::arg("reference_region") = py::none(), py::arg("orientation") = "max-birefringence", py::arg("euler_zyz_deg") = py::none(),
                py::arg("thickness_range_um") = std::pair(1.0, 200.0), py::arg("exposure_free") = false, py::arg("candidates") = 4,
                py::arg("condenser_na") = 0.0, py::arg("polarizer_deg") = 0.0, py::arg("analyzer_deg") = 90.0, py::arg("light") = py::none(),
                py::arg("handedness") = "right", py::arg("progress") = py::none(), py::arg("verbose") = false,
@@ -273,6 +303,10 @@ photos: one photo or a list, each camera values 0 to 1, float, (height, width, 3
 mineral: name or alias. stage_deg, plate ('gypsum', 'mica' or None), mask (array of the photo's size,
   non-zero on the grain), region ((x, y, width, height) in pixels): one for all photos or a list of one per
   photo; without mask or region the whole photo is the grain. plate_slow_deg: the plate's slow direction.
+reference_mask, reference_region: a region without birefringence (a hole, an isotropic grain, a grain at
+  extinction) that calibrates the camera's colours, given like mask and region (a list may hold None for a
+  photo where the region is not so); black between crossed polars, it calibrates only in a photo with a
+  plate, where it shows the plate's own colour. The exposure is then fitted too (docs/fitting.md).
 orientation: 'max-birefringence' (the grain shows its highest colour; its angle is fitted), 'known' (give
   euler_zyz_deg) or 'free' (only the retardation is determined). thickness_range_um: (min, max) searched.
 exposure_free: fit the exposure too. candidates: grid minima refined (1 to 20). condenser_na,
@@ -285,8 +319,9 @@ verbose: the solver's (Ceres's) messages on standard error, as for fit_conoscope
 Returns a dict: values, sigma (1 sigma, None where fixed or not determined), free, identifiable, by name
 (thickness_um, retardation_550nm in nm, birefringence_550nm, angle_0_deg … angle_2_deg, exposure) and
 angles_meaning; acceptable, verdict, rms_code (sRGB code units 0 to 1), thickness_lower_bound_um (free
-orientation), euler_zyz_deg of the fitted indicatrix, photos (measured and model colours, pixels used),
-candidates, warnings.)");
+orientation), euler_zyz_deg of the fitted indicatrix, photos (measured and model colours, pixels used, and
+the reference's or None), candidates, camera_calibration (channel_gains, gains_fitted_with_the_grain,
+contrast, contrast_sigma, reference_rms_code; None without a reference region), warnings.)");
 }
 
 }  // namespace petroscope::python

@@ -96,6 +96,34 @@ def test_a_grains_thickness_comes_back_from_its_colours():
     assert abs(known["values"]["thickness_um"] - 30.0) < 0.01, known["verdict"]
 
 
+def test_a_hole_in_the_section_calibrates_the_camera():
+    """A grain around a hole filled with balsam, photographed through a camera whose white balance is off. With
+    the hole as the reference region the fit recovers the camera's red-to-blue balance and the thickness."""
+    rows, columns = np.mgrid[0:32, 0:32]
+    labels = ((rows - 15.5) ** 2 + (columns - 15.5) ** 2 < 36).astype(np.uint8)
+    grains = [petroscope.Grain(0, "quartz", euler_zyz_deg=(20.0, 90.0, 0.0)), petroscope.Grain(1, "canada balsam")]
+    section = petroscope.Section(labels, grains, thickness_um=30.0)
+    white_balance = np.array([1.15, 1.0, 0.85], dtype=np.float32)
+    shots = [dict(stage_deg=0), dict(stage_deg=30), dict(stage_deg=25, plate="gypsum")]  # the plate at the grain's 45-degree position
+    photos = [srgb_codes(white_balance * petroscope.orthoscope(section, **shot).image) for shot in shots]
+    settings = dict(mineral="quartz", stage_deg=[0, 30, 25], plate=[None, None, "gypsum"], region=(24, 13, 6, 6))
+    fit = petroscope.fit_orthoscope(photos, reference_region=(13, 13, 6, 6), **settings)
+    assert fit["acceptable"], fit["verdict"]
+    assert abs(fit["values"]["thickness_um"] - 30.0) < 0.3, fit
+    camera = fit["camera_calibration"]
+    assert camera["gains_fitted_with_the_grain"] == ["G"]  # the plate's red has no green to calibrate it
+    assert abs(camera["channel_gains"][0] / camera["channel_gains"][2] - 1.15 / 0.85) < 0.02 * 1.15 / 0.85, camera
+    assert camera["reference_rms_code"] < 2.0 / 255.0
+    assert fit["photos"][0]["reference"]["pixels"] == 36
+    plain = petroscope.fit_orthoscope(photos, **settings)
+    assert plain["camera_calibration"] is None and plain["photos"][0]["reference"] is None
+    assert plain["rms_code"] > 2.0 * fit["rms_code"], (plain["rms_code"], fit["rms_code"])
+    with pytest.raises(ValueError, match="dark in every photo"):
+        petroscope.fit_orthoscope(photos, reference_region=[(13, 13, 6, 6), (13, 13, 6, 6), None], **settings)
+    with pytest.raises(ValueError, match="reference_mask and reference_region: give one or the other"):
+        petroscope.fit_orthoscope(photos, reference_region=(13, 13, 6, 6), reference_mask=np.ones((32, 32)), **settings)
+
+
 def test_bad_grain_fits_are_refused():
     photos = grain_photos(30.0, (0.0, 90.0, 0.0))
     with pytest.raises(ValueError, match="stage_deg: give one value for all 3 photos or a list of one per photo \\(got 2\\)"):

@@ -49,7 +49,7 @@ GrainFitPlan plan_grain_fit(const GrainFitRequest& request, const MineralCatalog
     check.validate();
     for (const GrainFitPhoto& photo : request.photos) {
         if (!std::isfinite(photo.stage_deg)) throw InputError("photo " + photo.label + ": the stage angle must be a finite number (degrees)");
-        plan.photos.push_back({photo.colour, photo.stage_deg, make_plate(photo.plate, catalog), photo.label});
+        plan.photos.push_back({photo.colour, photo.stage_deg, make_plate(photo.plate, catalog), photo.label, photo.reference});
     }
     return plan;
 }

@@ -1,6 +1,7 @@
 #include "petroscope/fit/orthoscope_fit.hpp"
 
 #include "cancel_between_iterations.hpp"
+#include "grain_camera.hpp"
 #include "solver_messages.hpp"
 
 #include "petroscope/core/error.hpp"
@@ -28,8 +29,20 @@ constexpr double kAcceptableRmsCode = 0.03;
 constexpr double kCodeFloor = 1.0 / 255.0;
 // Codes up to this are dark: a photo this dark everywhere may be grey (an extinct grain) and still be used.
 constexpr double kDarkCode = 4.0 / 255.0;
-// Parameter layout of the least squares.
-enum Slot { kThickness = 0, kAngle0 = 1, kExposure = 4, kSlots = 5 };
+// Priors of the camera terms fitted with the grain when a reference calibrates the camera: a channel gain
+// 10% from the others' mean, or a contrast 30% from 1, costs as much as one colour residual of two code
+// levels (a camera balanced on its light keeps its channels within about 10% of each other; a camera's
+// tone curve is steeper than sRGB's by up to about a third).
+constexpr double kGainPrior = (2.0 / 255.0) / 0.1, kContrastPrior = (2.0 / 255.0) / 0.3;
+// Parameter layout of the least squares. kGain0 + c: channel c's gain relative to the reference's, fitted
+// where no reference lights the channel; kContrast: the camera's contrast curve (detail::camera_tone).
+enum Slot { kThickness = 0, kAngle0 = 1, kExposure = 4, kGain0 = 5, kContrast = 8, kSlots = 9 };
+
+/// The camera at some parameters: gains on the linear display channels and the contrast of its tone curve.
+struct Camera {
+    Eigen::Vector3d gains = Eigen::Vector3d::Ones();
+    double contrast = 1.0;
+};
 
 /// Everything that does not depend on the grain's parameters: per photo, the microscope optics.
 class GrainModel {
@@ -49,7 +62,14 @@ public:
             optics_.push_back(std::make_unique<MicroscopeOptics>(*settings, options.mounting));
             settings_.push_back(std::move(settings));
         }
+        if (std::any_of(photos.begin(), photos.end(), [](const GrainPhoto& photo) { return photo.reference.has_value(); })) {
+            references_ = reference_colours();
+        }
     }
+
+    /// Whether a reference region calibrates the camera.
+    bool calibrated() const { return references_.has_value(); }
+    const detail::ReferenceColours& references() const { return *references_; }
 
     std::size_t photo_count() const { return photos_.size(); }
     const Mineral& mineral() const { return mineral_; }
@@ -78,22 +98,50 @@ public:
         return result;
     }
 
-    /// The sRGB code (0 … 1, clamped) the model predicts for photo k.
-    Eigen::Vector3d code(const GrainResponse& response, double thickness_um, double exposure, std::vector<double>& spectrum) const {
+    /// The linear display colour of a response at a thickness, before the camera.
+    Eigen::Vector3d linear(const GrainResponse& response, double thickness_um, std::vector<double>& spectrum) const {
         response.transmission(thickness_um, spectrum);
-        const Eigen::Vector3d linear = exposure * (display_ * integrator_.integrate(spectrum));
-        return {encode_srgb(std::clamp(linear.x(), 0.0, 1.0)), encode_srgb(std::clamp(linear.y(), 0.0, 1.0)),
-                encode_srgb(std::clamp(linear.z(), 0.0, 1.0))};
+        return display_ * integrator_.integrate(spectrum);
     }
 
-    /// Residuals (model − photo, code units), 3 per photo, at the parameters.
+    /// The camera at the parameters: exposure × the reference's gains at the contrast (1 without a reference)
+    /// × the relative gains.
+    Camera camera(const double* parameters) const {
+        const Eigen::Vector3d base = calibrated() ? detail::reference_gains(*references_, parameters[kContrast]) : Eigen::Vector3d::Ones();
+        const Eigen::Vector3d relative(parameters[kGain0], parameters[kGain0 + 1], parameters[kGain0 + 2]);
+        return {parameters[kExposure] * base.cwiseProduct(relative), parameters[kContrast]};
+    }
+
+    /// The code (0 … 1) the camera makes of a response at a thickness.
+    Eigen::Vector3d code(const GrainResponse& response, double thickness_um, const Camera& camera, std::vector<double>& spectrum) const {
+        return detail::camera_code(camera.gains.cwiseProduct(linear(response, thickness_um, spectrum)), camera.contrast);
+    }
+
+    /// 3 colour residuals per photo, then the priors of the 3 relative gains and of the contrast.
+    std::size_t residual_count() const { return 3 * photos_.size() + 4; }
+
+    /// Residuals at the parameters: model − photo (code units), 3 per photo, then the priors (zero where the
+    /// terms are held at 1).
     void residuals(const double* parameters, double* out) const {
         const std::vector<GrainResponse> grain = responses(axes(parameters + kAngle0));
+        const Camera at = camera(parameters);
         std::vector<double> spectrum;
         for (std::size_t k = 0; k < photos_.size(); ++k) {
-            const Eigen::Vector3d difference = code(grain[k], parameters[kThickness], parameters[kExposure], spectrum) - photos_[k].colour.mean_code;
+            const Eigen::Vector3d difference = code(grain[k], parameters[kThickness], at, spectrum) - photos_[k].colour.mean_code;
             for (int c = 0; c < 3; ++c) out[3 * k + static_cast<std::size_t>(c)] = difference[c];
         }
+        const std::size_t priors = 3 * photos_.size();
+        for (std::size_t c = 0; c < 3; ++c) out[priors + c] = kGainPrior * std::log(parameters[kGain0 + c]);
+        out[priors + 3] = kContrastPrior * std::log(parameters[kContrast]);
+    }
+
+    /// The rms of the colour residuals (code units) at the parameters.
+    double colour_rms(const double* parameters) const {
+        std::vector<double> out(residual_count());
+        residuals(parameters, out.data());
+        double squares = 0.0;
+        for (std::size_t r = 0; r < 3 * photos_.size(); ++r) squares += out[r] * out[r];
+        return std::sqrt(squares / static_cast<double>(3 * photos_.size()));
     }
 
     double maximum_birefringence() const {
@@ -102,6 +150,25 @@ public:
     }
 
 private:
+    /// The references' model colours: no birefringence, so the microscope without the crystal (the grain's
+    /// response at thickness 0). Throws InputError when no reference is lit in any channel.
+    detail::ReferenceColours reference_colours() const {
+        const std::vector<GrainResponse> no_crystal = responses(Eigen::Matrix3d::Identity());
+        std::vector<double> spectrum;
+        detail::ReferenceColours references;
+        for (std::size_t k = 0; k < photos_.size(); ++k) {
+            if (!photos_[k].reference) continue;
+            references.photos.push_back(k);
+            references.model_linear.push_back(linear(no_crystal[k], 0.0, spectrum));
+            references.measured_code.push_back(photos_[k].reference->mean_code);
+        }
+        if (!detail::mark_lit_channels(references)) {
+            throw InputError("the reference region is dark in every photo that gives it (between crossed polars without a plate it is black, "
+                             "which calibrates nothing): give it in a photo with the plate in, where it shows the plate's own colour");
+        }
+        return references;
+    }
+
     const std::vector<GrainPhoto>& photos_;
     const Mineral& mineral_;
     const OrthoscopeFitOptions& options_;
@@ -109,6 +176,7 @@ private:
     Eigen::Matrix3d display_;
     std::vector<std::unique_ptr<MicroscopeSettings>> settings_;  // the optics keep references to them
     std::vector<std::unique_ptr<MicroscopeOptics>> optics_;
+    std::optional<detail::ReferenceColours> references_;
 };
 
 struct ColourCost {
@@ -128,12 +196,24 @@ int angle_count(GrainOrientation orientation) {
     return 0;
 }
 
-std::array<bool, kSlots> free_slots(const OrthoscopeFitOptions& options) {
+/// The fitted parameters: thickness, the orientation's angles, the exposure when asked; with a reference,
+/// the exposure (the grain may lie in other light than the reference), the gains of the channels no
+/// reference lights, and the contrast.
+std::array<bool, kSlots> free_slots(const GrainModel& model, const OrthoscopeFitOptions& options) {
     std::array<bool, kSlots> free{};
     free[kThickness] = true;
     for (int a = 0; a < angle_count(options.orientation); ++a) free[static_cast<std::size_t>(kAngle0 + a)] = true;
-    free[kExposure] = options.exposure_free;
+    free[kExposure] = options.exposure_free || model.calibrated();
+    for (std::size_t c = 0; c < 3; ++c) free[kGain0 + c] = model.calibrated() && !model.references().lit[c];
+    free[kContrast] = model.calibrated();
     return free;
+}
+
+/// The parameters at a thickness and orientation with the camera at its start: the options' exposure
+/// (1 with a reference, whose gains hold the exposure), relative gains and contrast 1.
+std::array<double, kSlots> initial_parameters(const GrainModel& model, const OrthoscopeFitOptions& options, double thickness_um,
+                                              const std::array<double, 3>& angles_deg) {
+    return {thickness_um, angles_deg[0], angles_deg[1], angles_deg[2], model.calibrated() ? 1.0 : options.exposure, 1.0, 1.0, 1.0, 1.0};
 }
 
 /// One point of the global search.
@@ -172,6 +252,7 @@ std::vector<GridPoint> global_search(const GrainModel& model, const OrthoscopeFi
             break;
     }
     std::vector<GridPoint> grid(orientations.size() * static_cast<std::size_t>(thickness_steps));
+    const Camera camera = model.camera(initial_parameters(model, options, 0.0, {}).data());
     std::atomic<int> done{0};
 #pragma omp parallel for schedule(dynamic, 1)
     for (std::size_t o = 0; o < orientations.size(); ++o) {
@@ -182,7 +263,7 @@ std::vector<GridPoint> global_search(const GrainModel& model, const OrthoscopeFi
             const double thickness = std::min(options.thickness_min_um + s * step_um, options.thickness_max_um);
             double cost = 0.0;
             for (std::size_t k = 0; k < model.photo_count(); ++k) {
-                cost += (model.code(grain[k], thickness, options.exposure, spectrum) - model.photo(k).colour.mean_code).squaredNorm();
+                cost += (model.code(grain[k], thickness, camera, spectrum) - model.photo(k).colour.mean_code).squaredNorm();
             }
             grid[o * static_cast<std::size_t>(thickness_steps) + static_cast<std::size_t>(s)] = {cost, thickness, orientations[o]};
         }
@@ -215,10 +296,10 @@ std::vector<GridPoint> starting_points(std::vector<GridPoint> grid, int count, d
 double refine(const GrainModel& model, const OrthoscopeFitOptions& options, std::array<double, kSlots>& parameters, ProgressRelay& relay) {
     auto* cost = new ceres::DynamicNumericDiffCostFunction<ColourCost, ceres::CENTRAL>(new ColourCost{&model});
     cost->AddParameterBlock(kSlots);
-    cost->SetNumResiduals(static_cast<int>(3 * model.photo_count()));
+    cost->SetNumResiduals(static_cast<int>(model.residual_count()));
     ceres::Problem problem;
     problem.AddResidualBlock(cost, nullptr, parameters.data());
-    const std::array<bool, kSlots> free = free_slots(options);
+    const std::array<bool, kSlots> free = free_slots(model, options);
     std::vector<int> fixed;
     for (int j = 0; j < kSlots; ++j) {
         if (!free[static_cast<std::size_t>(j)]) fixed.push_back(j);
@@ -228,6 +309,12 @@ double refine(const GrainModel& model, const OrthoscopeFitOptions& options, std:
     problem.SetParameterUpperBound(parameters.data(), kThickness, options.thickness_max_um);
     problem.SetParameterLowerBound(parameters.data(), kExposure, 0.05);
     problem.SetParameterUpperBound(parameters.data(), kExposure, 20.0);
+    for (int c = 0; c < 3; ++c) {
+        problem.SetParameterLowerBound(parameters.data(), kGain0 + c, 0.2);
+        problem.SetParameterUpperBound(parameters.data(), kGain0 + c, 5.0);
+    }
+    problem.SetParameterLowerBound(parameters.data(), kContrast, 0.5);
+    problem.SetParameterUpperBound(parameters.data(), kContrast, 2.0);
     ceres::Solver::Options solver;
     solver.linear_solver_type = ceres::DENSE_QR;
     solver.max_num_iterations = 100;
@@ -260,7 +347,7 @@ Eigen::MatrixXd central_differences(const Function& f, Eigen::Index rows, const 
 
 /// The residuals at the parameters, as a vector.
 Eigen::VectorXd residual_vector(const GrainModel& model, const std::array<double, kSlots>& at) {
-    Eigen::VectorXd residual(static_cast<Eigen::Index>(3 * model.photo_count()));
+    Eigen::VectorXd residual(static_cast<Eigen::Index>(model.residual_count()));
     model.residuals(at.data(), residual.data());
     return residual;
 }
@@ -279,7 +366,7 @@ Eigen::VectorXd derived(const GrainModel& model, const std::array<double, kSlots
 /// below 1e-10 are the photo's blind spots: parameters with a large share in them are not determined.
 void uncertainties(const GrainModel& model, const OrthoscopeFitOptions& options, const std::array<double, kSlots>& best,
                    OrthoscopeFitResult& result) {
-    const std::array<bool, kSlots> free_flags = free_slots(options);
+    const std::array<bool, kSlots> free_flags = free_slots(model, options);
     std::vector<int> free;
     for (int j = 0; j < kSlots; ++j) {
         if (free_flags[static_cast<std::size_t>(j)]) free.push_back(j);
@@ -319,6 +406,7 @@ void uncertainties(const GrainModel& model, const OrthoscopeFitOptions& options,
     assign(result.thickness_um, kThickness, 0.25 * best[kThickness]);
     for (int a = 0; a < 3; ++a) assign(result.angles_deg[static_cast<std::size_t>(a)], kAngle0 + a, 30.0);
     assign(result.exposure, kExposure, 0.5 * best[kExposure]);
+    if (result.calibration) assign(result.calibration->contrast, kContrast, 0.5);
 
     // Derived values: σ² = gᵀCg with g their gradient in the free parameters.
     const Eigen::VectorXd centre = derived(model, best);
@@ -332,6 +420,92 @@ void uncertainties(const GrainModel& model, const OrthoscopeFitOptions& options,
     if (result.retardation_nm.sigma && *result.retardation_nm.sigma > 0.25 * std::abs(centre[0])) {
         result.retardation_nm.identifiable = false;
         result.retardation_nm.sigma.reset();
+    }
+}
+
+/// The camera found with the grain at the parameters: its gains at the reference's light, its contrast, and
+/// the references' model colours and residual.
+CameraCalibration calibration_at(const GrainModel& model, const std::array<double, kSlots>& parameters) {
+    std::array<double, kSlots> at_reference = parameters;
+    at_reference[kExposure] = 1.0;
+    const Camera camera = model.camera(at_reference.data());
+    const detail::ReferenceColours& references = model.references();
+    CameraCalibration calibration;
+    calibration.channel_gains = camera.gains;
+    calibration.contrast.value = camera.contrast;
+    for (std::size_t c = 0; c < 3; ++c) calibration.fitted_with_grain[c] = !references.lit[c];
+    calibration.model_code.resize(model.photo_count());
+    double squares = 0.0;
+    for (std::size_t r = 0; r < references.photos.size(); ++r) {
+        const Eigen::Vector3d code = detail::camera_code(camera.gains.cwiseProduct(references.model_linear[r]), camera.contrast);
+        squares += (code - references.measured_code[r]).squaredNorm();
+        calibration.model_code[references.photos[r]] = code;
+    }
+    calibration.rms_code = std::sqrt(squares / (3.0 * static_cast<double>(references.photos.size())));
+    return calibration;
+}
+
+/// The global search, then Ceres from its best starting points; the best parameters to `best`, every refined
+/// minimum to result.candidates (best first).
+void search_and_refine(const GrainModel& model, const OrthoscopeFitOptions& options, ProgressRelay& relay, std::array<double, kSlots>& best,
+                         OrthoscopeFitResult& result) {
+    const std::vector<GridPoint> starts =
+        starting_points(global_search(model, options, relay), std::max(options.candidates, 1), thickness_step_um(model, options), options.orientation);
+    double best_cost = std::numeric_limits<double>::infinity();
+    for (const GridPoint& start : starts) {
+        std::array<double, kSlots> parameters = initial_parameters(model, options, start.thickness_um, start.angles_deg);
+        const double cost = refine(model, options, parameters, relay);
+        relay.report(0.5 + 0.5 * static_cast<double>(result.candidates.size() + 1) / static_cast<double>(starts.size()));
+        result.candidates.push_back({parameters[kThickness], {parameters[kAngle0], parameters[kAngle0 + 1], parameters[kAngle0 + 2]},
+                                     model.colour_rms(parameters.data())});
+        if (cost < best_cost) {
+            best_cost = cost;
+            best = parameters;
+        }
+    }
+    std::sort(result.candidates.begin(), result.candidates.end(), [](const GrainCandidate& a, const GrainCandidate& b) { return a.rms_code < b.rms_code; });
+    // Angles shown in their principal range: the indicatrix repeats every 180° about the microscope axis.
+    if (options.orientation == GrainOrientation::max_birefringence) best[kAngle0] -= 180.0 * std::floor(best[kAngle0] / 180.0);
+}
+
+/// Photos with a plate in which the fitted grain shows within 8 code levels of the plate's own colour: the
+/// grain is near extinction there, and the photo tells nothing of its retardation or of slow and fast.
+std::vector<std::string> plate_photos_at_extinction(const GrainModel& model, const std::array<double, kSlots>& best, const OrthoscopeFitResult& result) {
+    const std::vector<GrainResponse> grain = model.responses(result.axes);
+    const Camera camera = model.camera(best.data());
+    std::vector<double> spectrum;
+    std::vector<std::string> labels;
+    for (std::size_t k = 0; k < model.photo_count(); ++k) {
+        if (!model.photo(k).plate) continue;
+        const Eigen::Vector3d plate_only = model.code(grain[k], 0.0, camera, spectrum);
+        if ((result.model_code[k] - plate_only).cwiseAbs().maxCoeff() < 8.0 / 255.0) {
+            labels.push_back(model.photo(k).label.empty() ? "photo " + std::to_string(k + 1) : model.photo(k).label);
+        }
+    }
+    return labels;
+}
+
+/// What the user should know of a finished fit: assumptions, a calibration that does not hold, a rival thickness.
+void add_warnings(const std::vector<GrainPhoto>& photos, const OrthoscopeFitOptions& options, OrthoscopeFitResult& result) {
+    if (options.orientation == GrainOrientation::max_birefringence) {
+        result.warnings.push_back("the thickness assumes the grain shows its highest interference colour (the section contains its fastest and "
+                                  "slowest directions); cut otherwise, the grain is thicker than this");
+        const bool plate = std::any_of(photos.begin(), photos.end(), [](const GrainPhoto& photo) { return photo.plate.has_value(); });
+        if (!plate) result.warnings.push_back("without a photo with an accessory plate the slow and fast directions cannot be told apart (angle +-90 deg)");
+    }
+    if (result.calibration && result.calibration->rms_code > kAcceptableRmsCode) {
+        result.warnings.push_back("the reference region's colours do not follow the calibrated camera (" +
+                                  format_significant(255.0 * result.calibration->rms_code, 3) +
+                                  " code levels rms): is it isotropic, or at extinction, in every photo that gives it?");
+    }
+    if (!result.thickness_um.identifiable) {
+        result.warnings.push_back("the photos do not determine the thickness (with the orientation free only the retardation t*dn is "
+                                  "measured); give the orientation (its Euler angles) or choose a grain of maximum birefringence");
+    }
+    if (result.thickness_um.identifiable && result.candidates.size() > 1 && result.candidates[1].rms_code < 1.5 * result.candidates[0].rms_code &&
+        std::abs(result.candidates[1].thickness_um - result.candidates[0].thickness_um) > 0.05 * result.candidates[0].thickness_um) {
+        result.warnings.push_back("another thickness, " + format_significant(result.candidates[1].thickness_um, 4) +
+                                  " um, fits almost as well; add photos (another stage angle, the gypsum plate) to tell them apart");
     }
 }
 
@@ -426,57 +600,29 @@ OrthoscopeFitResult fit_orthoscope_grain(const std::vector<GrainPhoto>& photos, 
     if (mineral.optical_class == OpticalClass::isotropic) throw InputError(mineral.name + " is isotropic: it stays dark between crossed polars");
     const GrainModel model(photos, mineral, options, integrator);
     ProgressRelay relay(progress);
-    const std::vector<GridPoint> starts =
-        starting_points(global_search(model, options, relay), std::max(options.candidates, 1), thickness_step_um(model, options), options.orientation);
-
     OrthoscopeFitResult result;
     std::array<double, kSlots> best{};
-    double best_cost = std::numeric_limits<double>::infinity();
-    const double residual_count = 3.0 * static_cast<double>(photos.size());
-    for (const GridPoint& start : starts) {
-        std::array<double, kSlots> parameters{start.thickness_um, start.angles_deg[0], start.angles_deg[1], start.angles_deg[2], options.exposure};
-        const double cost = refine(model, options, parameters, relay);
-        relay.report(0.5 + 0.5 * static_cast<double>(result.candidates.size() + 1) / static_cast<double>(starts.size()));
-        result.candidates.push_back({parameters[kThickness], {parameters[kAngle0], parameters[kAngle0 + 1], parameters[kAngle0 + 2]},
-                                     std::sqrt(2.0 * cost / residual_count)});
-        if (cost < best_cost) {
-            best_cost = cost;
-            best = parameters;
-        }
-    }
-    std::sort(result.candidates.begin(), result.candidates.end(), [](const GrainCandidate& a, const GrainCandidate& b) { return a.rms_code < b.rms_code; });
-    // Angles shown in their principal range: the indicatrix repeats every 180° about the microscope axis.
-    if (options.orientation == GrainOrientation::max_birefringence) best[kAngle0] -= 180.0 * std::floor(best[kAngle0] / 180.0);
-
+    search_and_refine(model, options, relay, best, result);
+    if (model.calibrated()) result.calibration = calibration_at(model, best);
     uncertainties(model, options, best, result);
     result.axes = model.axes(best.data() + kAngle0);
     const std::vector<GrainResponse> grain = model.responses(result.axes);
+    const Camera camera = model.camera(best.data());
     std::vector<double> spectrum;
-    for (std::size_t k = 0; k < photos.size(); ++k) result.model_code.push_back(model.code(grain[k], best[kThickness], best[kExposure], spectrum));
-    result.rms_code = std::sqrt(2.0 * best_cost / residual_count);
+    for (std::size_t k = 0; k < photos.size(); ++k) result.model_code.push_back(model.code(grain[k], best[kThickness], camera, spectrum));
+    result.rms_code = model.colour_rms(best.data());
     result.acceptable = std::isfinite(result.rms_code) && result.rms_code <= kAcceptableRmsCode;
     result.verdict = result.acceptable
                          ? "the model matches the grain's colours to " + format_significant(255.0 * result.rms_code, 3) + " code levels rms"
                          : "no acceptable fit: the colour residual is " + format_significant(255.0 * result.rms_code, 3) +
                                " code levels rms (at most " + format_significant(255.0 * kAcceptableRmsCode, 3) + " accepted); is it " + mineral.name + "?";
-
     if (options.orientation == GrainOrientation::free && result.retardation_nm.identifiable) {
         result.thickness_lower_bound_um = std::abs(result.retardation_nm.value) / (model.maximum_birefringence() * 1e3);
     }
-    if (options.orientation == GrainOrientation::max_birefringence) {
-        result.warnings.push_back("the thickness assumes the grain shows its highest interference colour (the section contains its fastest and "
-                                  "slowest directions); cut otherwise, the grain is thicker than this");
-        const bool plate = std::any_of(photos.begin(), photos.end(), [](const GrainPhoto& photo) { return photo.plate.has_value(); });
-        if (!plate) result.warnings.push_back("without a photo with an accessory plate the slow and fast directions cannot be told apart (angle +-90 deg)");
-    }
-    if (!result.thickness_um.identifiable) {
-        result.warnings.push_back("the photos do not determine the thickness (with the orientation free only the retardation t*dn is "
-                                  "measured); give the orientation (its Euler angles) or choose a grain of maximum birefringence");
-    }
-    if (result.thickness_um.identifiable && result.candidates.size() > 1 && result.candidates[1].rms_code < 1.5 * result.candidates[0].rms_code &&
-        std::abs(result.candidates[1].thickness_um - result.candidates[0].thickness_um) > 0.05 * result.candidates[0].thickness_um) {
-        result.warnings.push_back("another thickness, " + format_significant(result.candidates[1].thickness_um, 4) +
-                                  " um, fits almost as well; add photos (another stage angle, the gypsum plate) to tell them apart");
+    add_warnings(photos, options, result);
+    for (const std::string& label : plate_photos_at_extinction(model, best, result)) {
+        result.warnings.push_back(label + ": the grain is near extinction in this photo, which shows the plate's own colour and says nothing of the "
+                                          "grain; take the photo with the plate at the grain's 45-degree position (brightest, 45 degrees from extinction)");
     }
     return result;
 }

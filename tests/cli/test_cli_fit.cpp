@@ -219,6 +219,62 @@ TEST_F(FitOrthoscopeCli, BadPhotosAndOptionsAreRefused) {
     expect_rejected("fit orthoscope --photo " + testing::quoted(scratch() / "grey.png") + tail, {"grey.png", "grayscale"});
 }
 
+// fit orthoscope with a reference region: a quartz grain (optic axis in the section, at 20°) around a hole
+// filled with balsam, photographed at stage 0° and 30° and with the gypsum plate at the grain's 45° position.
+class FitOrthoscopeReferenceCli : public testing::CliFixture {
+protected:
+    void SetUp() override {
+        testing::CliFixture::SetUp();
+        const std::filesystem::path folder = scratch() / "hole";
+        std::filesystem::create_directories(folder);
+        cv::Mat labels(64, 64, CV_8UC1);
+        for (int y = 0; y < 64; ++y) {
+            for (int x = 0; x < 64; ++x) labels.at<unsigned char>(y, x) = std::hypot(x - 31.5, y - 31.5) < 12.0 ? 2 : 1;
+        }
+        ASSERT_TRUE(cv::imwrite((folder / "grains.png").string(), labels));
+        testing::write_text(folder / "section.txt", "name: hole\ngrain_map: grains.png\nsize_px: 64 64\npixel_size_um: 10\nthickness_um: 30\n"
+                                                    "grain 1: quartz, euler 20 90 0\ngrain 2: canada balsam, euler 0 0 0\n");
+        for (const auto& [name, options] : std::vector<std::pair<std::string, std::string>>{
+                 {"xpl0.png", "--stage-deg 0"}, {"xpl30.png", "--stage-deg 30"}, {"gypsum25.png", "--stage-deg 25 --plate gypsum"}}) {
+            const testing::CommandResult run = petroscope("orthoscope --section " + testing::quoted(folder) + " " + options + " -o " + testing::quoted(scratch() / name));
+            ASSERT_EQ(run.exit_code, 0) << run.err;
+        }
+    }
+    std::string photos() const {
+        return "--photo " + testing::quoted(scratch() / "xpl0.png") + " --photo " + testing::quoted(scratch() / "xpl30.png") + " --photo " +
+               testing::quoted(scratch() / "gypsum25.png") + " --stage-deg 0,30,25 --plate none,none,gypsum --region 46,26,12,12 --mineral quartz";
+    }
+};
+
+TEST_F(FitOrthoscopeReferenceCli, TheHoleCalibratesTheCameraAndTheReportSaysHow) {
+    const testing::CommandResult run = petroscope("fit orthoscope " + photos() + " --reference-region 26,26,12,12 -o " + testing::quoted(out()));
+    ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+    const nlohmann::json report = nlohmann::json::parse(testing::read_text(out() / "report.json"));
+    EXPECT_NEAR(report["thickness_um"]["value"].get<double>(), 30.0, 0.3);
+    const nlohmann::json& camera = report["camera_calibration"];
+    // The renderer's own camera: the sRGB curve, white balanced on the light.
+    EXPECT_NEAR(camera["channel_gains"][0].get<double>(), 1.0, 0.02) << camera;
+    EXPECT_NEAR(camera["channel_gains"][2].get<double>(), 1.0, 0.02) << camera;
+    EXPECT_EQ(camera["gains_fitted_with_the_grain"], nlohmann::json::array({"G"}));
+    EXPECT_LT(camera["reference_rms_code"].get<double>(), 1.0 / 255.0);
+    EXPECT_EQ(report["photos"][2]["reference"]["pixels"].get<int>(), 144);
+    EXPECT_NE(run.out.find("camera: gains"), std::string::npos) << run.out;
+    const cv::Mat swatches = cv::imread((out() / "colours.png").string());
+    EXPECT_EQ(swatches.cols, 4 * 64);  // grain measured | model, reference measured | model
+}
+
+TEST_F(FitOrthoscopeReferenceCli, BadReferencesAreRefused) {
+    const std::string tail = " -o " + testing::quoted(out());
+    expect_rejected("fit orthoscope " + photos() + " --reference-region 1,2,3" + tail, {"--reference-region", "X,Y,WIDTH,HEIGHT"});
+    expect_rejected("fit orthoscope " + photos() + " --reference-region 60,60,10,10" + tail, {"--reference-region", "leaves"});
+    expect_rejected("fit orthoscope " + photos() + " --reference-region 26,26,12,12 --reference-mask " + testing::quoted(scratch() / "xpl0.png") + tail,
+                    {"--reference-mask", "--reference-region"});
+    expect_rejected("fit orthoscope " + photos() + " --reference-region 26,26,12,12 --reference-region none" + tail, {"--reference-region", "one per photo"});
+    expect_rejected("fit orthoscope " + photos() + " --reference-region 26,26,12,12 --reference-region 26,26,12,12 --reference-region none" + tail,
+                    {"dark in every photo"});
+    EXPECT_FALSE(std::filesystem::exists(out() / "report.json"));
+}
+
 // Photos of quartz fitted as calcite: no calcite grain shows these colours at any thickness in range.
 TEST_F(FitOrthoscopeCli, WrongMineralHasNoAcceptableFit) {
     const testing::CommandResult run =

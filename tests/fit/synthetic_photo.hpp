@@ -70,6 +70,18 @@ inline PhotoParameterFlags microscope_unknowns() {
     return free;
 }
 
+/// Linear display RGB (CV_64FC3, channels R, G, B) of an XYZ image (3 channels) through `display`.
+inline cv::Mat display_linear(const Image& xyz, const Eigen::Matrix3d& display) {
+    cv::Mat linear(xyz.height, xyz.width, CV_64FC3);
+    for (int y = 0; y < xyz.height; ++y) {
+        for (int x = 0; x < xyz.width; ++x) {
+            const Eigen::Vector3d rgb = display * Eigen::Vector3d(xyz.at(x, y, 0), xyz.at(x, y, 1), xyz.at(x, y, 2));
+            linear.at<cv::Vec3d>(y, x) = cv::Vec3d(rgb[0], rgb[1], rgb[2]);
+        }
+    }
+    return linear;
+}
+
 /// What a camera makes of linear RGB (CV_64FC3, channels R, G, B): `tone` per channel, Gaussian noise of
 /// σ = `noise`, 8-bit quantisation and JPEG at `jpeg_quality` (0: none); camera values 0 … 1. The JPEG
 /// file's bytes go to `jpeg_file` when given.

@@ -50,14 +50,8 @@ public:
             settings.microscope.stage_deg = shot.stage_deg;
             if (shot.gypsum) settings.microscope.plate = gypsum_plate();
             settings.mounting = options_.mounting;
-            const Image xyz = render_orthoscope(section, testing::fit_minerals(), settings, light_.integrator.get());
-            cv::Mat linear(kSize, kSize, CV_64FC3);
-            for (int y = 0; y < kSize; ++y) {
-                for (int x = 0; x < kSize; ++x) {
-                    const Eigen::Vector3d rgb = light_.display * Eigen::Vector3d(xyz.at(x, y, 0), xyz.at(x, y, 1), xyz.at(x, y, 2));
-                    linear.at<cv::Vec3d>(y, x) = cv::Vec3d(rgb[0], rgb[1], rgb[2]);
-                }
-            }
+            const cv::Mat linear =
+                testing::display_linear(render_orthoscope(section, testing::fit_minerals(), settings, light_.integrator.get()), light_.display);
             const Image photo = testing::camera_image(
                 linear, [](int, double value) { return encode_srgb(std::clamp(value, 0.0, 1.0)); }, 2.0 / 255.0, 85, seed++);
             GrainPhoto grain;

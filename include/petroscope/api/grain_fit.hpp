@@ -22,6 +22,7 @@ struct GrainFitPhoto {
     double stage_deg = 0.0;
     std::optional<PlateRequest> plate;
     std::string label;  // for messages and reports, e.g. the file name
+    std::optional<GrainColour> reference;  // the reference region's colour (GrainPhoto::reference), if given
 };
 
 struct GrainFitRequest {

@@ -42,6 +42,10 @@ struct GrainPhoto {
     double stage_deg = 0.0;
     std::optional<AccessoryPlate> plate;
     std::string label;  // for reports, e.g. the file name
+    /// The colour of a reference region in this photo, if one is given: a region that shows no birefringence
+    /// (a hole filled with the mountant, an isotropic grain, a grain at extinction), which the camera shows
+    /// as black without a plate and as the plate's own colour with one. It calibrates the camera.
+    std::optional<GrainColour> reference;
 };
 
 /// Birefringence of the waves travelling along the microscope axis in a crystal of `mineral` with
@@ -79,6 +83,17 @@ struct GrainCandidate {
     double rms_code = 0.0;              // rms of the colour residuals, sRGB code units (0 … 1)
 };
 
+/// The camera's colour rendering found from the reference region (docs/fitting.md, "Calibrating the camera").
+struct CameraCalibration {
+    Eigen::Vector3d channel_gains = Eigen::Vector3d::Ones();  // on the linear display channels, at the reference's light
+    /// Channels no reference lights (the gypsum plate's red has no green in sRGB: its linear green is below 0):
+    /// their gain is fitted with the grain.
+    std::array<bool, 3> fitted_with_grain{};
+    FittedValue contrast;  // the tone curve's contrast a (1: the sRGB curve), fitted with the grain
+    std::vector<std::optional<Eigen::Vector3d>> model_code;   // per photo, the reference's calibrated model colour
+    double rms_code = 0.0;  // rms of the reference's colour residuals after calibration (code units 0 … 1)
+};
+
 struct OrthoscopeFitResult {
     FittedValue thickness_um;
     FittedValue retardation_nm;       // t·Δn at 550 nm for the fitted orientation, normal incidence
@@ -90,14 +105,18 @@ struct OrthoscopeFitResult {
     std::vector<Eigen::Vector3d> model_code;  // per photo, the model's colour
     std::vector<GrainCandidate> candidates;    // best first
     double rms_code = 0.0;
+    std::optional<CameraCalibration> calibration;  // when the photos carry a reference region
     bool acceptable = false;
     std::string verdict;
     std::vector<std::string> warnings;
 };
 
-/// Fits the grain; `integrator` defines the white light, on the wavelengths of options.microscope. Throws
-/// InputError for unusable input (no photos, every photo grey, a thickness range that is not 0 < min < max,
-/// a wavelength grid unlike the integrator's), Cancelled when `progress` says stop.
+/// Fits the grain; `integrator` defines the white light, on the wavelengths of options.microscope. When any
+/// photo carries a reference colour, the camera's gains are those that carry the references' model colours to
+/// their measured ones, and its contrast, the gains no reference lights and the exposure (the light may differ
+/// between the reference and the grain) are fitted with the grain. Throws InputError for
+/// unusable input (no photos, every photo grey, a thickness range that is not 0 < min < max, a wavelength
+/// grid unlike the integrator's, references that are dark in every photo), Cancelled when `progress` says stop.
 OrthoscopeFitResult fit_orthoscope_grain(const std::vector<GrainPhoto>& photos, const Mineral& mineral, const OrthoscopeFitOptions& options,
                                          const SpectralIntegrator& integrator, const ProgressCallback& progress = {});
 
