@@ -33,13 +33,18 @@ Grid block_luminance(const Image& photo, int factor) {
     return grid;
 }
 
+// The overlap a centre needs, as a fraction of the frame: a figure a fifth of the frame off centre each way (the
+// most a fit is asked to find) overlaps its half turn on 0.6² = 36% of it. Smaller overlaps, strips along the
+// frame's edges, can be as symmetric about their own middle by chance as the figure is about its centre.
+constexpr double kLeastOverlap = 1.0 / 3.0;
+
 // The correlation of the grid with its half turn p → s − p (s = 2c in block indices), over the overlap; −∞ where
-// the overlap is under a quarter of the grid or flat.
+// the overlap is under kLeastOverlap of the grid or flat.
 double half_turn_correlation(const Grid& grid, int s_x, int s_y) {
     const int x_begin = std::max(0, s_x - (grid.width - 1)), x_end = std::min(grid.width - 1, s_x);
     const int y_begin = std::max(0, s_y - (grid.height - 1)), y_end = std::min(grid.height - 1, s_y);
     const double count = static_cast<double>(x_end - x_begin + 1) * static_cast<double>(y_end - y_begin + 1);
-    if (x_end < x_begin || y_end < y_begin || count < 0.25 * grid.width * grid.height) return -std::numeric_limits<double>::infinity();
+    if (x_end < x_begin || y_end < y_begin || count < kLeastOverlap * grid.width * grid.height) return -std::numeric_limits<double>::infinity();
     double sum = 0.0, sum_squares = 0.0, sum_products = 0.0;
     for (int y = y_begin; y <= y_end; ++y) {
         for (int x = x_begin; x <= x_end; ++x) {

@@ -7,6 +7,7 @@
 #include "camera_optics_photo.hpp"
 
 #include "petroscope/core/error.hpp"
+#include "petroscope/core/text.hpp"
 #include "petroscope/io/jpeg_encoding.hpp"
 
 #include <gtest/gtest.h>
@@ -14,6 +15,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
 #include <random>
 
@@ -243,6 +247,18 @@ void PrintTo(const OpticsCase& c, std::ostream* os) {
 
 class RealOpticsFitTest : public ::testing::TestWithParam<OpticsCase> {};
 
+/// With PETROSCOPE_TEST_PHOTOS naming a folder, the case's photo goes there as a JPEG file
+/// (MINERAL-THICKNESSum-PROJECTION-SIZEpx.jpg), to look at or to fit with the command line (docs/fitting.md shows one).
+void save_test_photo(const OpticsCase& c, const std::vector<std::uint8_t>& jpeg_file) {
+    const char* folder = std::getenv("PETROSCOPE_TEST_PHOTOS");
+    if (folder == nullptr) return;
+    const std::string name = std::string(c.mineral) + "-" + format_significant(c.truth.thickness_um, 6) + "um-" +
+                             std::string(projection_name(c.truth.projection)) + "-" + std::to_string(c.size_px) + "px.jpg";
+    std::ofstream file(std::filesystem::path(folder) / name, std::ios::binary);
+    file.write(reinterpret_cast<const char*>(jpeg_file.data()), static_cast<std::streamsize>(jpeg_file.size()));
+    ASSERT_TRUE(file.good()) << "could not write " << name << " into " << folder;
+}
+
 // A photo with no field stop, the figure larger than the frame and off its centre, the light falling off
 // about another centre, the analyzer turned and leaking, the camera's white balance and tone curve off,
 // blur, noise and JPEG; the scale is known (a centred figure fixes only thickness × scale² otherwise). The
@@ -262,6 +278,7 @@ TEST_P(RealOpticsFitTest, ThicknessWithinTwoPercentAndTwoSigma) {
     ConoscopePhotoModel model = testing::photo_model(testing::fit_minerals().find(c.mineral), c.cut);
     std::vector<std::uint8_t> jpeg_file;
     const Image photo = testing::photo_through_optics(model, light, truth, kSize, 3, &jpeg_file);
+    save_test_photo(c, jpeg_file);
     model.projection = truth.projection;
     model.field_stop = FieldStop::none;
     model.illumination = IlluminationProfile::falloff;
