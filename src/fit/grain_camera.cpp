@@ -8,6 +8,7 @@
 namespace petroscope::detail {
 namespace {
 
+/// C_a(y) = yᵃ / (yᵃ + (1 − y)ᵃ) (camera_tone), y clamped to 0 … 1.
 double contrast_curve(double code, double contrast) {
     if (code <= 0.0 || code >= 1.0) return std::clamp(code, 0.0, 1.0);
     const double up = std::pow(code, contrast), down = std::pow(1.0 - code, contrast);
