@@ -468,11 +468,11 @@ void search_and_refine(const GrainModel& model, const OrthoscopeFitOptions& opti
     if (options.orientation == GrainOrientation::max_birefringence) best[kAngle0] -= 180.0 * std::floor(best[kAngle0] / 180.0);
 }
 
-/// Photos with a plate in which the fitted grain shows within 8 code levels of the plate's own colour: the
-/// grain is near extinction there, and the photo tells nothing of its retardation or of slow and fast.
-std::vector<std::string> plate_photos_at_extinction(const GrainModel& model, const std::array<double, kSlots>& best, const OrthoscopeFitResult& result) {
-    const std::vector<GrainResponse> grain = model.responses(result.axes);
-    const Camera camera = model.camera(best.data());
+/// Photos with a plate in which the fitted grain (its responses `grain`, seen by `camera`) shows within 8 code
+/// levels of the plate's own colour: the grain is near extinction there, and the photo tells nothing of its
+/// retardation or of slow and fast.
+std::vector<std::string> plate_photos_at_extinction(const GrainModel& model, const std::vector<GrainResponse>& grain, const Camera& camera,
+                                                    const OrthoscopeFitResult& result) {
     std::vector<double> spectrum;
     std::vector<std::string> labels;
     for (std::size_t k = 0; k < model.photo_count(); ++k) {
@@ -620,7 +620,7 @@ OrthoscopeFitResult fit_orthoscope_grain(const std::vector<GrainPhoto>& photos, 
         result.thickness_lower_bound_um = std::abs(result.retardation_nm.value) / (model.maximum_birefringence() * 1e3);
     }
     add_warnings(photos, options, result);
-    for (const std::string& label : plate_photos_at_extinction(model, best, result)) {
+    for (const std::string& label : plate_photos_at_extinction(model, grain, camera, result)) {
         result.warnings.push_back(label + ": the grain is near extinction in this photo, which shows the plate's own colour and says nothing of the "
                                           "grain; take the photo with the plate at the grain's 45-degree position (brightest, 45 degrees from extinction)");
     }
