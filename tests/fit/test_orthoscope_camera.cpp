@@ -2,7 +2,7 @@
 // and colour matrix off, an S-shaped look curve, light falling off across the field, Bayer mosaic, JPEG 75.
 // A hole in the section (filled with the mountant) is the reference region that calibrates the camera.
 #include "colour_camera.hpp"
-#include "synthetic_photo.hpp"
+#include "grain_photo.hpp"
 
 #include "petroscope/core/error.hpp"
 #include "petroscope/fit/orthoscope_fit.hpp"
@@ -32,13 +32,6 @@ struct Shot {
 /// the plate shows addition or subtraction best.
 std::vector<Shot> petrographers_shots(double angle_deg) { return {{0.0, false}, {30.0, false}, {45.0 - angle_deg, true}}; }
 
-/// A grain of maximum birefringence (X and Z in the section) with X at `angle_deg` on the stage.
-Eigen::Matrix3d max_birefringence_axes(double angle_deg) {
-    Eigen::Matrix3d in_plane;
-    in_plane << 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, -1.0, 0.0;
-    return rotation_z_deg(angle_deg) * in_plane;
-}
-
 class HoleAndGrain {
 public:
     HoleAndGrain() : light_(testing::white_light()) {
@@ -49,8 +42,8 @@ public:
     const OrthoscopeFitOptions& options() const { return options_; }
     const SpectralIntegrator& integrator() const { return *light_.integrator; }
 
-    /// The linear display colours of a section of a grain of `mineral` around a hole, at one stage angle.
-    cv::Mat linear(const std::string& mineral, double thickness_um, const Eigen::Matrix3d& axes, const Shot& shot) const {
+    /// A section of a grain of `mineral` around a hole.
+    static ThinSection section(const std::string& mineral, double thickness_um, const Eigen::Matrix3d& axes) {
         ThinSection section;
         section.name = "grain around a hole";
         section.width_px = section.height_px = kFramePx;
@@ -66,12 +59,7 @@ public:
         section.grains.push_back({2, "canada balsam", Eigen::Matrix3d::Identity(), std::nullopt, 0});
         section.thickness_um = thickness_um;
         section.validate();
-        OrthoscopeSettings settings;
-        settings.microscope = options_.microscope;
-        settings.microscope.stage_deg = shot.stage_deg;
-        if (shot.gypsum) settings.microscope.plate = gypsum_plate();
-        settings.mounting = options_.mounting;
-        return testing::display_linear(render_orthoscope(section, testing::fit_minerals(), settings, light_.integrator.get()), light_.display);
+        return section;
     }
 
     /// The photos of a grain of maximum birefringence with X at `angle_deg` (petrographers_shots) through
@@ -82,21 +70,20 @@ public:
     }
     std::vector<GrainPhoto> take(const std::string& mineral, double thickness_um, double angle_deg, const std::vector<Shot>& shots,
                                  const testing::ColourCamera& camera, bool calibrate, unsigned seed) const {
-        const Eigen::Matrix3d axes = max_birefringence_axes(angle_deg);
+        const ThinSection grain_section = section(mineral, thickness_um, testing::max_birefringence_axes(angle_deg));
         std::vector<GrainPhoto> photos;
         for (const Shot& shot : shots) {
-            const Image photo = camera.photograph(linear(mineral, thickness_um, axes, shot), seed++);
+            const Image photo = camera.photograph(testing::section_linear(grain_section, options_, light_, shot.stage_deg, shot.gypsum), seed++);
             GrainPhoto grain;
             grain.colour = grain_colour(photo, region_mask(kGrainRegion));
             grain.stage_deg = shot.stage_deg;
-            if (shot.gypsum) grain.plate = gypsum_plate();
+            if (shot.gypsum) grain.plate = testing::gypsum_plate();
             if (calibrate) grain.reference = grain_colour(photo, region_mask(kReferenceRegion));
             photos.push_back(grain);
         }
         return photos;
     }
 
-    static AccessoryPlate gypsum_plate() { return make_accessory_plate(PlateKind::gypsum, testing::fit_minerals().find("gypsum"), 45.0); }
     static Image region_mask(const std::array<int, 4>& r) { return rectangle_mask(kFramePx, kFramePx, r[0], r[1], r[2], r[3]); }
 
 private:
@@ -193,7 +180,7 @@ TEST(OrthoscopeCameraCalibration, RetardationWithinFivePercentThroughRandomCamer
         const double thickness_um = 15.0 + 45.0 * uniform_unit_interval(rng);
         const double angle_deg = 180.0 * uniform_unit_interval(rng);
         const testing::ColourCamera camera = testing::ColourCamera::random(rng, kFramePx, kFramePx);
-        const double retardation_nm = thickness_um * 1e3 * normal_incidence_birefringence(mineral, max_birefringence_axes(angle_deg), 550.0);
+        const double retardation_nm = thickness_um * 1e3 * normal_incidence_birefringence(mineral, testing::max_birefringence_axes(angle_deg), 550.0);
         std::printf("case %2d: %s %.1f um, %.1f nm, X at %.0f deg; camera: white balance %.2f %.2f %.2f, look %.1f, light -%.0f%% at the edge\n", n,
                     name.c_str(), thickness_um, retardation_nm, angle_deg, camera.white_balance.x(), camera.white_balance.y(), camera.white_balance.z(),
                     camera.look_steepness, 100.0 * camera.light_falloff);

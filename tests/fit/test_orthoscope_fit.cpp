@@ -1,7 +1,7 @@
 // Acceptance of `fit orthoscope` (issue 6) on synthetic photos: a one-grain section rendered by the
 // orthoscope renderer at several stage angles, with and without the gypsum plate, through an sRGB camera
 // with noise σ = 2/255 and JPEG quality 85; the thickness and orientation hidden from the fit.
-#include "synthetic_photo.hpp"
+#include "grain_photo.hpp"
 
 #include "petroscope/core/error.hpp"
 #include "petroscope/fit/orthoscope_fit.hpp"
@@ -45,26 +45,16 @@ public:
         section.validate();
         std::vector<GrainPhoto> photos;
         for (const GrainShot& shot : shots) {
-            OrthoscopeSettings settings;
-            settings.microscope = options_.microscope;
-            settings.microscope.stage_deg = shot.stage_deg;
-            if (shot.gypsum) settings.microscope.plate = gypsum_plate();
-            settings.mounting = options_.mounting;
-            const cv::Mat linear =
-                testing::display_linear(render_orthoscope(section, testing::fit_minerals(), settings, light_.integrator.get()), light_.display);
+            const cv::Mat linear = testing::section_linear(section, options_, light_, shot.stage_deg, shot.gypsum);
             const Image photo = testing::camera_image(
                 linear, [](int, double value) { return encode_srgb(std::clamp(value, 0.0, 1.0)); }, 2.0 / 255.0, 85, seed++);
             GrainPhoto grain;
             grain.colour = grain_colour(photo, rectangle_mask(kSize, kSize, 10, 10, 12, 12));
             grain.stage_deg = shot.stage_deg;
-            if (shot.gypsum) grain.plate = gypsum_plate();
+            if (shot.gypsum) grain.plate = testing::gypsum_plate();
             photos.push_back(grain);
         }
         return photos;
-    }
-
-    static AccessoryPlate gypsum_plate() {
-        return make_accessory_plate(PlateKind::gypsum, testing::fit_minerals().find("gypsum"), 45.0);
     }
 
 private:
@@ -116,9 +106,7 @@ TEST(OrthoscopeFit, UnknownInPlaneOrientationThicknessWithinOneAndAHalfMicrometr
         for (const double thickness : kThicknesses) {
             // A grain of maximum birefringence (X and Z in the section) at a random angle on the stage.
             const double angle_deg = 180.0 * uniform_unit_interval(rng);
-            Eigen::Matrix3d in_plane;
-            in_plane << 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, -1.0, 0.0;
-            const Eigen::Matrix3d axes = rotation_z_deg(angle_deg) * in_plane;
+            const Eigen::Matrix3d axes = testing::max_birefringence_axes(angle_deg);
             const std::vector<GrainPhoto> photos = camera.take(name, thickness, axes, {{0.0, false}, {30.0, false}, {0.0, true}}, 21);
             camera.options().orientation = GrainOrientation::max_birefringence;
             const OrthoscopeFitResult fit = fit_orthoscope_grain(photos, mineral, camera.options(), camera.integrator());
