@@ -11,6 +11,9 @@
 
 namespace petroscope::testing {
 
+/// A photo parameter's position in PhotoParameters and in the fit's flags and results.
+constexpr std::size_t index_of(PhotoParameter p) { return static_cast<std::size_t>(p); }
+
 /// The hidden truth of a photo through real optics.
 struct OpticsTruth {
     double thickness_um = 50.0;
@@ -60,20 +63,20 @@ inline Eigen::Vector3d figure_at(const Image& figure, const ConoscopeSettings& s
     return light.integrator ? Eigen::Vector3d(light.display * value) : value;
 }
 
-/// The photo (camera values 0 … 1, 3 channels) of `size_px`² that `truth` describes through `model`'s
-/// crystal, polars and light; `seed` for the noise; the JPEG file's bytes to `jpeg_file` when given.
-inline Image photo_through_optics(const ConoscopePhotoModel& model, const PhotoLight& light, const OpticsTruth& truth, int size_px,
-                                  unsigned seed, std::vector<std::uint8_t>* jpeg_file = nullptr) {
+/// Linear display RGB (CV_64FC3, channels R, G, B) of the `size_px`² photo that `truth` describes through
+/// `model`'s crystal, polars and light, before the optics' blur and the camera.
+inline cv::Mat light_through_optics(const ConoscopePhotoModel& model, const PhotoLight& light, const OpticsTruth& truth, int size_px) {
     const double na = model.settings.numerical_aperture;
     const Eigen::Vector2d centre(0.5 * size_px + truth.center_dx_px, 0.5 * size_px + truth.center_dy_px);
     const Eigen::Vector2d light_centre(0.5 * size_px + truth.envelope_dx_px, 0.5 * size_px + truth.envelope_dy_px);
-    // The render reaches the farthest corner's direction and has 3 pixels per photo pixel at the centre,
-    // where the projections spread directions most.
+    // The render reaches the farthest corner's direction (or grazing light) and has 3 pixels per photo pixel
+    // at the centre, where the projections spread directions most.
     double reach = 0.0;
     for (const double x : {0.0, double(size_px)}) {
         for (const double y : {0.0, double(size_px)}) {
             const double u = (Eigen::Vector2d(x, y) - centre).norm() / truth.field_radius_px;
-            reach = std::max(reach, projected_xi(truth.projection, na, u * (1.0 + truth.distortion * u * u)));
+            const double xi = projected_xi(truth.projection, na, u * (1.0 + truth.distortion * u * u));
+            reach = std::max(reach, xi < 0.0 ? 1.0 : xi);  // a corner beyond grazing: the frame shows every direction
         }
     }
     ConoscopeSettings settings = model.settings;
@@ -89,7 +92,7 @@ inline Image photo_through_optics(const ConoscopePhotoModel& model, const PhotoL
     settings.stage_deg += truth.rotation_deg;
     const Image passed = render_conoscope(settings, model.principal_n, light.integrator.get());
     settings.analyzer_deg += 90.0;
-    const Image blocked = render_conoscope(settings, model.principal_n, light.integrator.get());
+    const Image blocked = truth.extinction_ratio > 0.0 ? render_conoscope(settings, model.principal_n, light.integrator.get()) : Image();
 
     constexpr int kSubsamples = 3;  // per pixel side: a camera pixel integrates light over its area
     cv::Mat linear(size_px, size_px, CV_64FC3, cv::Scalar(0, 0, 0));
@@ -106,15 +109,25 @@ inline Image photo_through_optics(const ConoscopePhotoModel& model, const PhotoL
                     const double light_r = (point - light_centre).norm() / truth.envelope_radius_px;
                     const double envelope = std::exp(-std::pow(light_r, truth.envelope_power));
                     const Eigen::Vector2d direction = xi / offset.norm() * offset;
-                    value += envelope * (figure_at(passed, settings, light, direction) +
-                                         truth.extinction_ratio * figure_at(blocked, settings, light, direction));
+                    Eigen::Vector3d shown = figure_at(passed, settings, light, direction);
+                    if (truth.extinction_ratio > 0.0) shown += truth.extinction_ratio * figure_at(blocked, settings, light, direction);
+                    value += envelope * shown;
                 }
             }
             value /= kSubsamples * kSubsamples;
             linear.at<cv::Vec3d>(y, x) = cv::Vec3d(value[0], value[1], value[2]);
         }
     }
-    return blurred_camera_image(linear, truth.blur_px, truth.gains, truth.gamma, truth.noise, truth.jpeg_quality, seed, jpeg_file);
+    return linear;
+}
+
+/// The photo (camera values 0 … 1, 3 channels) of `size_px`² that `truth` describes through `model`'s
+/// crystal, polars and light, through truth's camera (white-balance gains and a pure gamma); `seed` for the
+/// noise; the JPEG file's bytes to `jpeg_file` when given.
+inline Image photo_through_optics(const ConoscopePhotoModel& model, const PhotoLight& light, const OpticsTruth& truth, int size_px,
+                                  unsigned seed, std::vector<std::uint8_t>* jpeg_file = nullptr) {
+    return blurred_camera_image(light_through_optics(model, light, truth, size_px), truth.blur_px, truth.gains, truth.gamma, truth.noise,
+                                truth.jpeg_quality, seed, jpeg_file);
 }
 
 }  // namespace petroscope::testing

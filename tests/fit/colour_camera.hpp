@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <random>
 #include <vector>
 
@@ -56,8 +57,9 @@ struct ColourCamera {
         return (logistic(code) - logistic(0.0)) / (logistic(1.0) - logistic(0.0));
     }
 
-    /// The photo (camera values 0 … 1, 3 channels) of linear display RGB (CV_64FC3, channels R, G, B).
-    Image photograph(const cv::Mat& linear, unsigned seed) const {
+    /// The photo (camera values 0 … 1, 3 channels) of linear display RGB (CV_64FC3, channels R, G, B); the
+    /// JPEG file's bytes to `jpeg_file` when given.
+    Image photograph(const cv::Mat& linear, unsigned seed, std::vector<std::uint8_t>* jpeg_file = nullptr) const {
         std::mt19937 random(seed);
         std::normal_distribution<double> noise_of(0.0, noise);
         // The sensor: one colour per pixel, RGGB (R at even rows and columns).
@@ -79,6 +81,7 @@ struct ColourCamera {
             std::vector<unsigned char> bytes;
             cv::imencode(".jpg", bgr, bytes, {cv::IMWRITE_JPEG_QUALITY, jpeg_quality});
             bgr = cv::imdecode(bytes, cv::IMREAD_COLOR);
+            if (jpeg_file != nullptr) *jpeg_file = std::move(bytes);
         }
         Image photo(linear.cols, linear.rows, 3);
         for (int y = 0; y < linear.rows; ++y) {

@@ -25,7 +25,7 @@ namespace petroscope {
 namespace {
 
 constexpr double kDegree = std::numbers::pi / 180.0;
-constexpr std::size_t index_of(PhotoParameter p) { return static_cast<std::size_t>(p); }
+using testing::index_of;
 
 ConoscopePhotoModel calcite_model(Projection projection) {
     ConoscopePhotoModel model = testing::photo_model(testing::fit_minerals().find("calcite"), Cut::optic_axis);
