@@ -71,7 +71,11 @@ TEST(PathTracer, FurnaceCrystalIsInvisibleAndLightStaysUnpolarized) {
     std::printf("%d pixels see the crystal: mean Y - 1 = %.2e +- %.2e\n", crystal_pixels, mean_deviation, mean_sigma);
     EXPECT_GT(crystal_pixels, 100);
     EXPECT_LE(std::abs(mean_deviation), 3.0 * mean_sigma);
-    EXPECT_LE(outside_3_sigma, 10);  // 0.27% of 1728 values expected beyond 3σ by chance: about 4.7
+    // Each σ is estimated from the pixel's own 32 paths, so a value's deviation in σ follows Student's t with
+    // 31 degrees of freedom, beyond 3 with probability 0.53%: about 9.1 of the 1728 values by chance, and more
+    // than 20 in under one render in a thousand (the Poisson law's 99.9% point). (The bound was 10, from the
+    // normal law's 0.27%, as if σ were known: an AVX-512 build, whose paths differ in rounding, found 12.)
+    EXPECT_LE(outside_3_sigma, 20);
 }
 
 // Random crystals (every mineral of the catalog, random shapes and orientations, wavelengths over the
