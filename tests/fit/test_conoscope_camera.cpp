@@ -7,8 +7,6 @@
 #include "camera_optics_photo.hpp"
 #include "colour_camera.hpp"
 
-#include "petroscope/io/jpeg_encoding.hpp"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -85,14 +83,7 @@ CaseOutcome photograph_and_fit(int index, const CameraCase& c, int size_px) {
     std::vector<std::uint8_t> jpeg_file;
     const Image photo = c.camera.photograph(linear, 7 + static_cast<unsigned>(index), &jpeg_file);
 
-    model.projection = c.optics.projection;
-    model.field_stop = FieldStop::none;
-    model.illumination = IlluminationProfile::falloff;
-    ConoscopeFitOptions options;
-    const JpegEncoding file_encoding = jpeg_encoding_of(jpeg_file, "photo.jpg").value();
-    options.photo_encoding = [file_encoding](const Image& image) { return encode_like_jpeg(image, file_encoding); };
-    options.initial = default_photo_parameters(size_px, size_px);
-    at(options.initial, PhotoParameter::field_radius_px) = c.optics.field_radius_px;
+    ConoscopeFitOptions options = testing::real_optics_fit(model, c.optics, jpeg_file, size_px);
     options.free.fill(true);
     for (const PhotoParameter fixed : {PhotoParameter::field_radius_px, PhotoParameter::tilt_deg, PhotoParameter::azimuth_deg,
                                        PhotoParameter::distortion, PhotoParameter::analyzer_offset_deg, PhotoParameter::extinction_ratio}) {

@@ -8,7 +8,6 @@
 
 #include "petroscope/core/error.hpp"
 #include "petroscope/core/text.hpp"
-#include "petroscope/io/jpeg_encoding.hpp"
 
 #include <gtest/gtest.h>
 
@@ -279,18 +278,10 @@ TEST_P(RealOpticsFitTest, ThicknessWithinTwoPercentAndTwoSigma) {
     std::vector<std::uint8_t> jpeg_file;
     const Image photo = testing::photo_through_optics(model, light, truth, kSize, 3, &jpeg_file);
     save_test_photo(c, jpeg_file);
-    model.projection = truth.projection;
-    model.field_stop = FieldStop::none;
-    model.illumination = IlluminationProfile::falloff;
 
-    ConoscopeFitOptions options;
-    // As the CLI does: the encoding read from the file, repeated on the best fit for its systematic error.
-    const JpegEncoding file_encoding = jpeg_encoding_of(jpeg_file, "photo.jpg").value();
-    options.photo_encoding = [file_encoding](const Image& image) { return encode_like_jpeg(image, file_encoding); };
-    options.initial = default_photo_parameters(kSize, kSize);
+    ConoscopeFitOptions options = testing::real_optics_fit(model, truth, jpeg_file, kSize);
     const double start_um = 2.0 * truth.thickness_um;
     at(options.initial, PhotoParameter::thickness_um) = start_um;
-    at(options.initial, PhotoParameter::field_radius_px) = truth.field_radius_px;
     options.thickness_min_um = start_um / 3.0;
     options.thickness_max_um = start_um * 3.0;
     options.free.fill(true);
