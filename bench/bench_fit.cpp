@@ -1,7 +1,10 @@
 // Fitting a 512² white-light photo of a conoscopic figure with every nuisance parameter free (thickness,
 // centre, scale, rotation, white balance, black level, gamma, blur): the photo is synthesised once
 // (tests/fit/synthetic_photo.hpp: muscovite 300 µm, centre and scale off, camera turned, JPEG 85), with
-// and without the check of the JPEG encoding's systematic error.
+// and without the check of the JPEG encoding's systematic error. Then issue 18's speed goal: the realistic-camera
+// test bed's twenty cases (realistic_camera_case.hpp) at 512², thickness unknown (the default 5 µm – 5 mm
+// search), every nuisance free.
+#include "realistic_camera_case.hpp"
 #include "synthetic_photo.hpp"
 
 #include "petroscope/io/jpeg_encoding.hpp"
@@ -51,6 +54,27 @@ void FitConoscopePhoto512(benchmark::State& state) {
 }
 // Argument: 1 with the encoding check (what the CLI does for a JPEG), 0 without (a PNG or TIFF photo).
 BENCHMARK(FitConoscopePhoto512)->Arg(1)->Arg(0)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+
+
+/// Case `state.range(0)` of the realistic-camera test bed, photographed at 512² (not timed) and fitted.
+void FitRealisticCamera512(benchmark::State& state) {
+    constexpr int kSize = 512;
+    const int index = static_cast<int>(state.range(0));
+    const testing::CameraCase c = testing::random_case(index, kSize);
+    const testing::CameraCasePhoto shot = testing::photograph_case(index, c, kSize);
+    double error_percent = 0.0;
+    for (auto _ : state) {
+        const ConoscopeFitResult result = fit_conoscope_photo(shot.photo, shot.model, shot.options);
+        const FittedValue& thickness = result.parameters[testing::index_of(PhotoParameter::thickness_um)];
+        error_percent = 100.0 * (thickness.value / c.optics.thickness_um - 1.0);
+        std::fprintf(stderr, "case %d, %s %.2f um: fitted %.3f um +- %.3g (%+.3f%%), %s, R2 %.4f\n", index, c.mineral.mineral,
+                     c.optics.thickness_um, thickness.value, thickness.sigma.value_or(0.0), error_percent,
+                     result.acceptable ? "accepted" : "refused", result.explained_variance);
+        benchmark::DoNotOptimize(error_percent);
+    }
+    state.counters["error_percent"] = error_percent;
+}
+BENCHMARK(FitRealisticCamera512)->DenseRange(0, 19)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 
 }  // namespace
 

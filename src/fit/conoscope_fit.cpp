@@ -141,6 +141,11 @@ double solve_level(const PhotoLevel& level, PhotoParameters& values, const Conos
     solver.function_tolerance = function_tolerance;
     solver.parameter_tolerance = 1e-9;
     solver.logging_type = detail::solver_logging();
+    // With bounds, each trust-region step is followed by a projected Armijo line search; by default it
+    // interpolates cubically, which asks the cost's gradient at every trial point, and so the whole Jacobian
+    // (most of an evaluation's work, and wasted on a rejected point). Quadratic interpolation needs only
+    // the cost there; the Jacobian is then computed once per accepted step.
+    solver.line_search_interpolation_type = ceres::QUADRATIC;
     CancelBetweenIterations cancel(relay);
     solver.callbacks.push_back(&cancel);
     ceres::Solver::Summary summary;

@@ -1,6 +1,7 @@
 #pragma once
 // Branch-free elementary functions that compilers can vectorise (std::sin cannot be, without
 // -ffast-math), accurate to a few ulp.
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cstdint>
@@ -139,6 +140,25 @@ inline SineCosine sine_cosine(double x) {
     const std::uint64_t sine_flip = (bits & 2u) << 62, cosine_flip = ((bits + 1u) & 2u) << 62;
     return {std::bit_cast<double>(std::bit_cast<std::uint64_t>(odd ? c : s) ^ sine_flip),
             std::bit_cast<double>(std::bit_cast<std::uint64_t>(odd ? s : c) ^ cosine_flip)};
+}
+
+/// e^x for x ≤ 709, 0 below −708 (where e^x would be subnormal, under 2.3e-308), NaN for NaN. With x = k·ln 2 + r,
+/// |r| ≤ ln(2)/2, it is 2ᵏ·e^r: k in the exponent's bits, e^r by its Taylor series to degree 13 (truncation < 1e-17;
+/// ln 2 split in two parts as π is above, Cody & Waite 1980).
+inline double exponential(double x) {
+    constexpr double inverse = 1.44269504088896340736;  // 1/ln 2
+    constexpr double high = 6.93147180369123816490e-01, low = 1.90821492927058770002e-10;
+    constexpr std::array<double, 14> coefficients{1.0,           1.0,           1.0 / 2.0,      1.0 / 6.0,       1.0 / 24.0,
+                                                  1.0 / 120.0,   1.0 / 720.0,   1.0 / 5040.0,   1.0 / 40320.0,   1.0 / 362880.0,
+                                                  1.0 / 3628800.0, 1.0 / 39916800.0, 1.0 / 479001600.0, 1.0 / 6227020800.0};
+    const double clamped = std::min(std::max(x, -708.0), 709.0);  // NaN passes through
+    const double shifted = clamped * inverse + 6755399441055744.0;
+    const double k = shifted - 6755399441055744.0;
+    const double r = (clamped - k * high) - k * low;
+    // k's low bits are shifted's (as in sine_cosine); 2ᵏ has the biased exponent k + 1023.
+    const std::int64_t k_bits = std::bit_cast<std::int64_t>(shifted) - std::bit_cast<std::int64_t>(6755399441055744.0);
+    const double scale = std::bit_cast<double>(static_cast<std::uint64_t>(k_bits + 1023) << 52);
+    return x < -708.0 ? 0.0 : polynomial(coefficients, r) * scale;
 }
 
 /// sin x / x from x ≥ 0 and its sine, with the series 1 − x²/6 below 1e-6 (where the quotient loses digits and
