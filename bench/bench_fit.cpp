@@ -55,7 +55,6 @@ void FitConoscopePhoto512(benchmark::State& state) {
 // Argument: 1 with the encoding check (what the CLI does for a JPEG), 0 without (a PNG or TIFF photo).
 BENCHMARK(FitConoscopePhoto512)->Arg(1)->Arg(0)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 
-
 /// Case `state.range(0)` of the realistic-camera test bed, photographed at 512² (not timed) and fitted.
 void FitRealisticCamera512(benchmark::State& state) {
     constexpr int kSize = 512;

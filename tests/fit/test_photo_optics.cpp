@@ -353,7 +353,7 @@ INSTANTIATE_TEST_SUITE_P(
         OpticsCase{"calcite", Cut::optic_axis, optics(50.0, Projection::tangent, -12.0, 8.0, 6.0, 0.0, 2.0, 0.002, {1.15, 0.9, 1.05}, 2.0), true}));
 
 // Known failures, kept runnable (--gtest_also_run_disabled_tests) until the model handles them (issue 18
-// stays open); both within 2% but outside their 2σ. Muscovite 60 µm through a sine projection with a
+// stays open); all within 2% but outside their 2σ. Muscovite 60 µm through a sine projection with a
 // pincushion distortion of 0.04: +0.40%, 4.0σ, R² 0.982 (the frame reaches |ξ| → 1, where the sine
 // projection packs the fringes of grazing light into a few pixels, finer than the pixel, and a camera's
 // pixels average them in a way the model's blur does not follow; through a tangent projection the same

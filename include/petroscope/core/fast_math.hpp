@@ -54,6 +54,18 @@ inline double polynomial(const std::array<double, N>& coefficients, double t) {
 
 namespace fast_math_detail {
 
+/// y rounded to the nearest integer k by adding and removing 1.5·2⁵² (exact for |k| < 2⁵¹; vectorises, unlike
+/// nearbyint under strict floating-point semantics). The sum, k + 1.5·2⁵², holds k's low bits in its own low bits
+/// (two's complement of k for k < 0, as the shift is even).
+struct Rounded {
+    double k, shifted;
+};
+inline constexpr double kRoundShift = 6755399441055744.0;
+inline Rounded round_to_integer(double y) {
+    const double shifted = y + kRoundShift;
+    return {shifted - kRoundShift, shifted};
+}
+
 /// x = k·π/D + r with |r| ≤ π/(2D), for D = 1 or 2. π/D is split in two parts (Cody & Waite 1980; the split of
 /// fdlibm's __ieee754_rem_pio2), its first 33 bits so that k·high is exact for |k| < 2²⁰.
 struct Reduction {
@@ -65,10 +77,7 @@ inline Reduction reduce_by_pi_over(double x) {
     constexpr double inverse = Divisor * 0.318309886183790671538;
     constexpr double high = 3.14159265346825122833e+00 / Divisor;  // halving is exact
     constexpr double low = 1.21542010130123844986e-10 / Divisor;   // π/D − high
-    // Round to the nearest integer by adding and removing 1.5·2⁵² (exact for |k| < 2⁵¹; vectorises,
-    // unlike nearbyint under strict floating-point semantics).
-    constexpr double round_shift = 6755399441055744.0;
-    const double k = (x * inverse + round_shift) - round_shift;
+    const double k = round_to_integer(x * inverse).k;
     return {(x - k * high) - k * low, k};
 }
 
@@ -129,12 +138,10 @@ struct SineCosine {
 inline SineCosine sine_cosine(double x) {
     constexpr double inverse = 2.0 * 0.318309886183790671538;
     constexpr double high = 3.14159265346825122833e+00 / 2, low = 1.21542010130123844986e-10 / 2;
-    // k + 1.5·2⁵² holds k's low bits in its own low bits (two's complement of k for k < 0, as the shift is even).
-    const double shifted = x * inverse + 6755399441055744.0;
-    const double k = shifted - 6755399441055744.0;
+    const auto [k, shifted] = fast_math_detail::round_to_integer(x * inverse);
     const double r = (x - k * high) - k * low;
     const double s = fast_math_detail::sine_series<8>(r), c = fast_math_detail::cosine_series(r);
-    const auto bits = std::bit_cast<std::uint64_t>(shifted);
+    const auto bits = std::bit_cast<std::uint64_t>(shifted);  // k's low bits
     const bool odd = (bits & 1u) != 0;
     // sin x < 0 for k mod 4 = 2, 3 (bit 1 of k), cos x for k mod 4 = 1, 2 (bit 1 of k + 1): flip the sign bit.
     const std::uint64_t sine_flip = (bits & 2u) << 62, cosine_flip = ((bits + 1u) & 2u) << 62;
@@ -152,11 +159,10 @@ inline double exponential(double x) {
                                                   1.0 / 120.0,   1.0 / 720.0,   1.0 / 5040.0,   1.0 / 40320.0,   1.0 / 362880.0,
                                                   1.0 / 3628800.0, 1.0 / 39916800.0, 1.0 / 479001600.0, 1.0 / 6227020800.0};
     const double clamped = std::min(std::max(x, -708.0), 709.0);  // NaN passes through
-    const double shifted = clamped * inverse + 6755399441055744.0;
-    const double k = shifted - 6755399441055744.0;
+    const auto [k, shifted] = fast_math_detail::round_to_integer(clamped * inverse);
     const double r = (clamped - k * high) - k * low;
-    // k's low bits are shifted's (as in sine_cosine); 2ᵏ has the biased exponent k + 1023.
-    const std::int64_t k_bits = std::bit_cast<std::int64_t>(shifted) - std::bit_cast<std::int64_t>(6755399441055744.0);
+    // k as an integer from shifted's low bits; 2ᵏ has the biased exponent k + 1023.
+    const std::int64_t k_bits = std::bit_cast<std::int64_t>(shifted) - std::bit_cast<std::int64_t>(fast_math_detail::kRoundShift);
     const double scale = std::bit_cast<double>(static_cast<std::uint64_t>(k_bits + 1023) << 52);
     return x < -708.0 ? 0.0 : polynomial(coefficients, r) * scale;
 }
