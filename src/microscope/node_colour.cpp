@@ -33,6 +33,29 @@ void interpolate_chunk(const double* basis, std::size_t stride, std::size_t begi
     for (std::size_t i = 0; i < length; ++i) out[i] = interpolate_at(basis, stride, begin + i, values);
 }
 
+// An amplitude of an oscillating term as the node values of each spectral weight it has, in single precision (it is
+// bounded by 1 and needed to kTermTolerance), and the rows of that weight's interpolation basis (ℓⱼ, or ℓⱼ times cos Γ or
+// −sin Γ: NodeColour::Amplitude), the first `weights` of them.
+struct AmplitudeParts {
+    std::array<std::array<float, kSpectralNodes>, 3> values{};
+    std::array<const float*, 3> rows{};
+    std::size_t weights = 0;
+};
+
+// The amplitude Σ_g Σⱼ values[g][j]·rows[g][j·stride + w] over the first Weights spectral weights, at the grid wavelengths
+// begin … begin + length − 1.
+template <std::size_t Weights>
+void amplitude_chunk(std::size_t stride, std::size_t begin, std::size_t length, const AmplitudeParts& parts, float* out) {
+#pragma omp simd
+    for (std::size_t i = 0; i < length; ++i) {
+        float sum = 0.0f;
+        for (std::size_t g = 0; g < Weights; ++g) {
+            for (std::size_t j = 0; j < kSpectralNodes; ++j) sum += parts.values[g][j] * parts.rows[g][j * stride + begin + i];
+        }
+        out[i] = sum;
+    }
+}
+
 }  // namespace
 
 NodeColour::Forms NodeColour::forms_of(const SpectralNodes& nodes, const std::array<std::vector<double>, 3>& channel_weights) {
@@ -65,14 +88,18 @@ NodeColour::NodeColour(const SpectralNodes& nodes, const std::vector<Eigen::Vect
     if (plate_phase_rad.empty()) return;
     if (plate_phase_rad.size() != weights.size()) throw std::invalid_argument("the plate's phase and the colour weights use different grids");
     std::array<std::vector<double>, 3> cosine_weights = channel_weights_, sine_weights = channel_weights_;
-    for (const double phase : plate_phase_rad) {
-        plate_cosine_values_.push_back(std::cos(phase));
-        plate_sine_values_.push_back(std::sin(phase));
-    }
-    for (std::size_t c = 0; c < 3; ++c) {
-        for (std::size_t w = 0; w < weights.size(); ++w) {
-            cosine_weights[c][w] *= plate_cosine_values_[w];
-            sine_weights[c][w] *= plate_sine_values_[w];
+    const std::size_t stride = nodes.padded_grid_size();
+    plate_basis_.assign(2 * kSpectralNodes * stride, 0.0f);
+    for (std::size_t w = 0; w < weights.size(); ++w) {
+        const double cosine = std::cos(plate_phase_rad[w]), sine = std::sin(plate_phase_rad[w]);
+        for (std::size_t c = 0; c < 3; ++c) {
+            cosine_weights[c][w] *= cosine;
+            sine_weights[c][w] *= sine;
+        }
+        for (std::size_t j = 0; j < kSpectralNodes; ++j) {
+            const double basis = nodes.basis()[j * stride + w];
+            plate_basis_[j * stride + w] = static_cast<float>(basis * cosine);
+            plate_basis_[(kSpectralNodes + j) * stride + w] = static_cast<float>(-basis * sine);
         }
     }
     plate_cosine_ = forms_of(nodes, cosine_weights);
@@ -131,51 +158,51 @@ std::optional<Eigen::Vector3d> NodeColour::xyz(const SpectralNodes& nodes, const
     }
     NodeValues half_phase;
     for (std::size_t j = 0; j < kSpectralNodes; ++j) half_phase[j] = 0.5 * phase_difference[j];
-    return smooth - 4.0 * oscillating_sum<Oscillation::fringe>(nodes, half_phase, {&product});
+    return smooth - 4.0 * oscillating_sum<Oscillation::fringe>(nodes, half_phase, {Amplitude{&product}});
 }
 
 template <NodeColour::Oscillation Kind>
-Eigen::Vector3d NodeColour::oscillating_sum(const SpectralNodes& nodes, const NodeValues& angle, const std::array<const NodeValues*, 6>& parts) const {
+Eigen::Vector3d NodeColour::oscillating_sum(const SpectralNodes& nodes, const NodeValues& angle, const std::array<Amplitude, 2>& amplitudes) const {
     // In vector lanes over the wavelengths, in chunks: first the interpolations, then the sine, loops whose
     // iterations are short enough to overlap in the processor.
-    constexpr int kParts = Kind == Oscillation::fringe ? 1 : Kind == Oscillation::rotation ? 2 : Kind == Oscillation::plate_inactive ? 3 : 6;
-    const double* basis = nodes.basis();
+    constexpr std::size_t kAmplitudes = Kind == Oscillation::fringe ? 1 : 2;
     const std::size_t stride = nodes.padded_grid_size(), count = nodes.grid_size();
-    const NodeValues &p0 = *parts[0], &p1 = kParts > 1 ? *parts[1] : p0, &p2 = kParts > 2 ? *parts[2] : p0;
-    const NodeValues &p3 = kParts > 3 ? *parts[3] : p0, &p4 = kParts > 3 ? *parts[4] : p0, &p5 = kParts > 3 ? *parts[5] : p0;
+    std::array<AmplitudeParts, kAmplitudes> parts;
+    for (std::size_t a = 0; a < kAmplitudes; ++a) {
+        AmplitudeParts& sum = parts[a];
+        for (std::size_t g = 0; g < 3; ++g) {
+            if (amplitudes[a][g] == nullptr) continue;
+            if (g > 0 && plate_basis_.empty()) throw std::logic_error("NodeColour: an amplitude with the plate's phase, made without it");
+            std::transform(amplitudes[a][g]->begin(), amplitudes[a][g]->end(), sum.values[sum.weights].begin(),
+                           [](double value) { return static_cast<float>(value); });
+            sum.rows[sum.weights++] = g == 0 ? nodes.single_basis() : plate_basis_.data() + (g - 1) * kSpectralNodes * stride;
+        }
+        if (sum.weights == 0) sum.rows[sum.weights++] = nodes.single_basis();  // a zero amplitude
+    }
+    const double* basis = nodes.basis();
     double x = 0.0, y = 0.0, z = 0.0;
     for (std::size_t begin = 0; begin < count; begin += kChunk) {
         const std::size_t length = std::min(kChunk, count - begin);
-        std::array<double, kChunk> theta, v0, v1, v2, v3, v4, v5;
+        std::array<double, kChunk> theta;
+        std::array<std::array<float, kChunk>, kAmplitudes> v;
         interpolate_chunk(basis, stride, begin, length, angle, theta.data());
-        interpolate_chunk(basis, stride, begin, length, p0, v0.data());
-        if constexpr (kParts > 1) interpolate_chunk(basis, stride, begin, length, p1, v1.data());
-        if constexpr (kParts > 2) interpolate_chunk(basis, stride, begin, length, p2, v2.data());
-        if constexpr (kParts > 3) {
-            interpolate_chunk(basis, stride, begin, length, p3, v3.data());
-            interpolate_chunk(basis, stride, begin, length, p4, v4.data());
-            interpolate_chunk(basis, stride, begin, length, p5, v5.data());
+        for (std::size_t a = 0; a < kAmplitudes; ++a) {
+            switch (parts[a].weights) {
+            case 1: amplitude_chunk<1>(stride, begin, length, parts[a], v[a].data()); break;
+            case 2: amplitude_chunk<2>(stride, begin, length, parts[a], v[a].data()); break;
+            default: amplitude_chunk<3>(stride, begin, length, parts[a], v[a].data()); break;
+            }
         }
         const double *w_x = channel_weights_[0].data() + begin, *w_y = channel_weights_[1].data() + begin;
         const double* w_z = channel_weights_[2].data() + begin;
-        const bool plate = Kind == Oscillation::plate_inactive || Kind == Oscillation::plate_active;
-        const double* plate_cosine = plate ? plate_cosine_values_.data() + begin : nullptr;
-        const double* plate_sine = plate ? plate_sine_values_.data() + begin : nullptr;
 #pragma omp simd reduction(+ : x, y, z)
         for (std::size_t i = 0; i < length; ++i) {
             double term = 0.0;
             if constexpr (Kind == Oscillation::fringe) {
-                term = v0[i] * sin_squared(theta[i]);
+                term = v[0][i] * sin_squared(theta[i]);
             } else {
                 const SineCosine both = sine_cosine(theta[i]);
-                if constexpr (Kind == Oscillation::rotation) {
-                    term = v0[i] * both.cosine + v1[i] * both.sine;
-                } else if constexpr (Kind == Oscillation::plate_inactive) {  // parts X, U_r, V_i
-                    term = (v0[i] + plate_cosine[i] * v1[i]) * both.cosine - plate_sine[i] * v2[i] * both.sine;
-                } else {  // parts X, Y, U_r, V_r, U_i, V_i
-                    term = (v0[i] + plate_cosine[i] * v2[i] - plate_sine[i] * v4[i]) * both.cosine +
-                           (v1[i] + plate_cosine[i] * v3[i] - plate_sine[i] * v5[i]) * both.sine;
-                }
+                term = v[0][i] * both.cosine + v[1][i] * both.sine;
             }
             x += w_x[i] * term;
             y += w_y[i] * term;
@@ -235,21 +262,24 @@ std::optional<Eigen::Vector3d> NodeColour::active_xyz(const SpectralNodes& nodes
     }
     const std::optional<Eigen::Vector3d> smooth_in_wavelength = smooth_rotation(nodes, two_omega, cosine_part, sine_part);
     const Eigen::Vector3d oscillating =
-        smooth_in_wavelength ? *smooth_in_wavelength : oscillating_sum<Oscillation::rotation>(nodes, two_omega, {&cosine_part, &sine_part});
+        smooth_in_wavelength ? *smooth_in_wavelength : oscillating_sum<Oscillation::rotation>(nodes, two_omega, {Amplitude{&cosine_part}, Amplitude{&sine_part}});
     return oscillating + weighted_sum(plain_, smooth);
 }
 
 std::optional<Eigen::Vector3d> NodeColour::plate_xyz(const SpectralNodes& nodes, const PlateNodeTerms& terms) const {
-    if (plate_cosine_values_.empty()) return std::nullopt;
+    if (plate_basis_.empty()) return std::nullopt;
     if (!(nodes.tail(terms.angle) <= kPhaseTolerance_rad)) return std::nullopt;
     // The terms that are not zero (PlateNodeTerms); U_i = −T_i.
-    const NodeValues* sine_term = terms.active ? &terms.sine : nullptr;
     const bool cross = terms.cross, active_cross = terms.active && terms.cross;
-    for (const NodeValues* term : {&terms.smooth, &terms.cosine, sine_term, cross ? &terms.in_phase : nullptr, cross ? &terms.in_phase_cosine : nullptr,
-                                   active_cross ? &terms.in_phase_sine : nullptr, active_cross ? &terms.quadrature : nullptr,
-                                   cross ? &terms.quadrature_sine : nullptr}) {
-        if (term != nullptr && !(nodes.tail(*term) <= kTermTolerance)) return std::nullopt;
+    const NodeValues* sine_term = terms.active ? &terms.sine : nullptr;
+    const std::array<const NodeValues*, 8> checked{&terms.smooth, &terms.cosine, sine_term, cross ? &terms.in_phase : nullptr,
+                                                   cross ? &terms.in_phase_cosine : nullptr, active_cross ? &terms.in_phase_sine : nullptr,
+                                                   active_cross ? &terms.quadrature : nullptr, cross ? &terms.quadrature_sine : nullptr};
+    Eigen::Matrix<double, kSpectralNodes, 8> columns = Eigen::Matrix<double, kSpectralNodes, 8>::Zero();
+    for (std::size_t m = 0; m < checked.size(); ++m) {
+        if (checked[m] != nullptr) columns.col(static_cast<Eigen::Index>(m)) = Eigen::Map<const Eigen::Matrix<double, kSpectralNodes, 1>>(checked[m]->data());
     }
+    if (!nodes.tails_within(columns, kTermTolerance)) return std::nullopt;
     // Where θ changes little over the spectrum every term is smooth, cos θ and sin θ included: three linear forms in
     // node values, one per spectral weight (W, W·cos Γ, W·sin Γ).
     if (const std::optional<std::array<NodeValues, 2>> cosine_sine = smooth_cosine_sine(nodes, terms.angle)) {
@@ -264,15 +294,11 @@ std::optional<Eigen::Vector3d> NodeColour::plate_xyz(const SpectralNodes& nodes,
             return weighted_sum(plain_, plain) + weighted_sum(plate_cosine_, in_phase) - weighted_sum(plate_sine_, quadrature);
         }
     }
-    Eigen::Vector3d result = weighted_sum(plain_, terms.smooth);
-    if (!terms.cross) return result + oscillating_sum<Oscillation::rotation>(nodes, terms.angle, {&terms.cosine, &terms.sine});
-    result += weighted_sum(plate_cosine_, terms.in_phase);
-    if (!terms.active) {
-        return result + oscillating_sum<Oscillation::plate_inactive>(nodes, terms.angle, {&terms.cosine, &terms.in_phase_cosine, &terms.quadrature_sine});
-    }
-    return result - weighted_sum(plate_sine_, terms.quadrature) + oscillating_sum<Oscillation::plate_active>(nodes, terms.angle,
-                                                              {&terms.cosine, &terms.sine, &terms.in_phase_cosine, &terms.in_phase_sine,
-                                                               &terms.quadrature_cosine, &terms.quadrature_sine});
+    // I − S − T-terms = (X + cos Γ·U_r − sin Γ·U_i)·cos θ + (Y + cos Γ·V_r − sin Γ·V_i)·sin θ.
+    const Eigen::Vector3d steady = weighted_sum(plain_, terms.smooth) + weighted_sum(plate_cosine_, terms.in_phase) - weighted_sum(plate_sine_, terms.quadrature);
+    const Amplitude cosine_amplitude{&terms.cosine, cross ? &terms.in_phase_cosine : nullptr, active_cross ? &terms.quadrature_cosine : nullptr};
+    const Amplitude sine_amplitude{sine_term, active_cross ? &terms.in_phase_sine : nullptr, cross ? &terms.quadrature_sine : nullptr};
+    return steady + oscillating_sum<Oscillation::rotation>(nodes, terms.angle, {cosine_amplitude, sine_amplitude});
 }
 
 }  // namespace petroscope::detail

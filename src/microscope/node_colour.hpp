@@ -76,17 +76,22 @@ private:
     /// Σ_w W(w)·(c(w)·cos θ(w) + s(w)·sin θ(w)) as forms in node values where smooth_cosine_sine serves; none elsewhere.
     std::optional<Eigen::Vector3d> smooth_rotation(const SpectralNodes& nodes, const NodeValues& angle, const NodeValues& cosine_part,
                                                    const NodeValues& sine_part) const;
-    /// Wavelength by wavelength, from node values: Σ_w W(w)·c(w)·sin²θ(w) (fringe), Σ_w W(w)·(c(w)·cos θ(w) +
-    /// s(w)·sin θ(w)) (rotation), or the oscillating part of plate_xyz (plate_inactive, plate_active: `parts` are
-    /// X, U_r, V_i, or X, Y, U_r, V_r, U_i, V_i).
-    enum class Oscillation { fringe, rotation, plate_inactive, plate_active };
+    /// An oscillating term's amplitude a + Re(e^{iΓ}·(r + i·q)) = a + cos Γ·r − sin Γ·q: the node quantities a, r, q
+    /// (nullptr: none; r and q only behind a plate).
+    using Amplitude = std::array<const NodeValues*, 3>;
+    /// Wavelength by wavelength: Σ_w W(w)·a(w)·sin²θ(w) (fringe: the first amplitude) or Σ_w W(w)·(a(w)·cos θ(w) +
+    /// b(w)·sin θ(w)) (rotation), with θ and the amplitudes a, b interpolated from node values.
+    enum class Oscillation { fringe, rotation };
     template <Oscillation Kind>
-    Eigen::Vector3d oscillating_sum(const SpectralNodes& nodes, const NodeValues& angle, const std::array<const NodeValues*, 6>& parts) const;
+    Eigen::Vector3d oscillating_sum(const SpectralNodes& nodes, const NodeValues& angle, const std::array<Amplitude, 2>& amplitudes) const;
 
     Forms plain_;                                         // V = W
     Forms plate_cosine_, plate_sine_;                     // V = W·cos Γ and W·sin Γ (behind a plate)
     std::array<std::vector<double>, 3> channel_weights_;  // per channel: W(w)
-    std::vector<double> plate_cosine_values_, plate_sine_values_;  // cos Γ(w), sin Γ(w); empty without a plate
+    // Behind a plate, the interpolation basis times cos Γ and times −sin Γ: ℓⱼ(w)·cos Γ(w) in row j, −ℓⱼ(w)·sin Γ(w) in
+    // row kSpectralNodes + j, each of the grid's padded length, in single precision (SpectralNodes::single_basis); empty
+    // without a plate.
+    std::vector<float> plate_basis_;
 };
 
 }  // namespace petroscope::detail

@@ -80,7 +80,7 @@ bool active_plate_terms(const PlateFrame& plate, const ActiveNodeFields& fields,
     terms.active = true;
     terms.cross = plate.cross;
     const auto& [x, y] = fields.component;
-    const Eigen::Vector2d &slow = plate.slow, &fast = plate.fast;
+    const double slow_x = plate.slow.x(), slow_y = plate.slow.y(), fast_x = plate.fast.x(), fast_y = plate.fast.y();
     double least_omega = std::numeric_limits<double>::infinity();
 #pragma omp simd reduction(min : least_omega)
     for (std::size_t j = 0; j < kSpectralNodes; ++j) {
@@ -90,10 +90,8 @@ bool active_plate_terms(const PlateFrame& plate, const ActiveNodeFields& fields,
         terms.angle[j] = 2.0 * omega;
         // A, B and C on the lab's x and y, then on the plate's axes.
         const ActiveSums on_x = active_sums(x, j), on_y = active_sums(y, j);
-        const auto on_axis = [&](const Eigen::Vector2d& axis) {
-            return ActiveSums{axis.x() * on_x.a + axis.y() * on_y.a, axis.x() * on_x.b + axis.y() * on_y.b, axis.x() * on_x.c + axis.y() * on_y.c};
-        };
-        const ActiveSums rho = on_axis(slow), pi = on_axis(fast);
+        const ActiveSums rho{slow_x * on_x.a + slow_y * on_y.a, slow_x * on_x.b + slow_y * on_y.b, slow_x * on_x.c + slow_y * on_y.c};
+        const ActiveSums pi{fast_x * on_x.a + fast_y * on_y.a, fast_x * on_x.b + fast_y * on_y.b, fast_x * on_x.c + fast_y * on_y.c};
         const double inverse_omega = 1.0 / std::max(omega, kLeastRotation_rad), inverse_omega_squared = inverse_omega * inverse_omega;
         const double p1 = plate.slow_weight[j], p2 = plate.fast_weight[j], half_g = 0.5 * plate.cross_weight[j];
         const double d_rho = (rho.b * rho.b + h * h * rho.c * rho.c) * inverse_omega_squared;

@@ -31,7 +31,7 @@ SpectralNodes::SpectralNodes(const std::vector<double>& grid_nm)
         const int k = n - 2 + row;
         for (int j = 0; j < n; ++j) {
             const double ends = (j == 0 || j == n - 1 ? 0.5 : 1.0) * (k == n - 1 ? 0.5 : 1.0);
-            tail_rows_[row][j] = 2.0 / (n - 1) * ends * std::cos(std::numbers::pi * j * k / (n - 1));
+            tail_rows_(row, j) = 2.0 / (n - 1) * ends * std::cos(std::numbers::pi * j * k / (n - 1));
         }
     }
     basis_.assign(kSpectralNodes * padded_size_, 0.0);
@@ -50,6 +50,8 @@ SpectralNodes::SpectralNodes(const std::vector<double>& grid_nm)
             basis_[static_cast<std::size_t>(j) * padded_size_ + w] = value;
         }
     }
+    single_basis_.resize(basis_.size());
+    std::transform(basis_.begin(), basis_.end(), single_basis_.begin(), [](double value) { return static_cast<float>(value); });
 }
 
 namespace {

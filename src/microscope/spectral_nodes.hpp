@@ -6,6 +6,8 @@
 // the grid, and the interference is evaluated there (docs/theory.md, "White light from spectral nodes").
 #include "petroscope/microscope/conoscope.hpp"
 
+#include <Eigen/Core>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -31,6 +33,9 @@ public:
     std::size_t padded_grid_size() const { return padded_size_; }
     /// Basis function j at grid wavelength w: basis()[j·padded_grid_size() + w].
     const double* basis() const { return basis_.data(); }
+    /// The same basis rounded to single precision, for quantities bounded by 1 and needed to about 1e-4 (the amplitudes
+    /// of oscillating terms): its rounding (6e-8) is immaterial there, and a vector holds twice the lanes.
+    const float* single_basis() const { return single_basis_.data(); }
 
     /// An estimate of the interpolation error of a quantity from its node values: |c₆| + |c₇|, its last two
     /// Chebyshev coefficients. For a function analytic in a Bernstein ellipse of parameter ρ they fall like
@@ -39,17 +44,25 @@ public:
     double tail(const std::array<double, kSpectralNodes>& values) const {
         double last_but_one = 0.0, last = 0.0;
         for (std::size_t j = 0; j < kSpectralNodes; ++j) {
-            last_but_one += tail_rows_[0][j] * values[j];
-            last += tail_rows_[1][j] * values[j];
+            last_but_one += tail_rows_(0, j) * values[j];
+            last += tail_rows_(1, j) * values[j];
         }
         return std::abs(last_but_one) + std::abs(last);
+    }
+    /// Whether the tail() of every column of `values` (a quantity's node values) is at most `tolerance` (not where one
+    /// is NaN): several quantities at once, in vector lanes.
+    template <int Columns>
+    bool tails_within(const Eigen::Matrix<double, kSpectralNodes, Columns>& values, double tolerance) const {
+        const Eigen::Matrix<double, 2, Columns> last_two = tail_rows_.lazyProduct(values);
+        return ((last_two.row(0).cwiseAbs() + last_two.row(1).cwiseAbs()).array() <= tolerance).all();
     }
 
 private:
     std::array<double, kSpectralNodes> nodes_nm_{};
-    std::array<std::array<double, kSpectralNodes>, 2> tail_rows_{};  // c₆ and c₇ from the node values
+    Eigen::Matrix<double, 2, kSpectralNodes> tail_rows_;  // c₆ and c₇ from the node values
     std::size_t grid_size_ = 0, padded_size_ = 0;
     std::vector<double> basis_;
+    std::vector<float> single_basis_;
 };
 
 /// Values of one quantity at the nodes.
