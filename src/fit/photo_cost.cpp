@@ -107,10 +107,12 @@ void PhotoCost::direction_columns(const PhotoParameters& values, const std::vect
     const std::size_t samples = level_.evaluator.sample_count(), w_count = level_.evaluator.wavelength_count();
     const double blur2 = total_blur2(values);
     const std::vector<InterferenceTerms>& seen = seen_terms();
-    std::vector<InterferenceTerms> shifted;
-    LinearSamples moved;
-    std::array<std::vector<Eigen::Vector3d>, 2> d_xi;
-    std::array<std::vector<double>, 2> d_phase_d_xi;
+    std::vector<InterferenceTerms>& shifted = scratch_.shifted;
+    LinearSamples& moved = scratch_.moved;
+    std::array<std::vector<Eigen::Vector3d>, 2>& d_xi = scratch_.d_xi;
+    std::array<std::vector<double>, 2>& d_phase_d_xi = scratch_.d_phase_d_xi;
+    std::vector<double>& phase_change = scratch_.phase_change;
+    std::vector<Eigen::Vector3d>& through_blur = scratch_.through_blur;
     for (std::size_t axis = 0; axis < 2; ++axis) {
         level_.evaluator.terms(values, shifted, kXiStep * (axis == 0 ? Eigen::Vector2d::UnitX() : Eigen::Vector2d::UnitY()));
         level_.evaluator.linear(shifted, cached_phase_, values[kThickness], blur2, shifts, false, moved);
@@ -121,8 +123,7 @@ void PhotoCost::direction_columns(const PhotoParameters& values, const std::vect
     }
     std::vector<std::array<Eigen::Vector2d, 5>> dxi(samples);
     for (std::size_t k = 0; k < samples; ++k) dxi[k] = direction_derivatives(level_.evaluator.model(), values, level_.evaluator.lattice().pixels[k]);
-    std::vector<double> phase_change(seen.size());
-    std::vector<Eigen::Vector3d> through_blur;
+    phase_change.resize(seen.size());
     for (std::size_t j = 0; j < kDirectionParameters.size(); ++j) {
         if (!free_[static_cast<std::size_t>(kDirectionParameters[j])]) continue;
         std::vector<Eigen::Vector3d>& column = d_linear[static_cast<std::size_t>(kDirectionParameters[j])];
@@ -133,7 +134,7 @@ void PhotoCost::direction_columns(const PhotoParameters& values, const std::vect
                 phase_change[i] = d_phase_d_xi[0][i] * dxi[k][j].x() + d_phase_d_xi[1][i] * dxi[k][j].y();
             }
         }
-        level_.evaluator.blur_response(unlit, cached_phase_, values[kThickness], blur2, shifts, phase_change, through_blur);
+        level_.evaluator.blur_response(unlit, cached_phase_, values[kThickness], blur2, shifts, phase_change, scratch_.change, through_blur);
         for (std::size_t k = 0; k < samples; ++k) column[k] += through_blur[k];
     }
 }
@@ -147,10 +148,10 @@ void PhotoCost::derivatives_at(const PhotoParameters& values, const std::vector<
     if (std::any_of(kDirectionParameters.begin(), kDirectionParameters.end(), [&](PhotoParameter p) { return free_[static_cast<std::size_t>(p)]; })) {
         direction_columns(values, shifts, unlit, d_linear);
     }
-    std::vector<InterferenceTerms> shifted;
-    LinearSamples moved;
+    std::vector<InterferenceTerms>& shifted = scratch_.shifted;
+    LinearSamples& moved = scratch_.moved;
     // Tilt, azimuth and the analyzer's offset change the terms themselves (and the phase's derivatives).
-    PhaseDerivatives moved_phase;
+    PhaseDerivatives& moved_phase = scratch_.moved_phase;
     for (const PhotoParameter p : kReevaluatedParameters) {
         const auto j = static_cast<std::size_t>(p);
         if (!free_[j]) continue;
@@ -188,6 +189,7 @@ bool PhotoCost::Evaluate(double const* const* parameters, double* residuals, dou
     const PhotoParameters values = to_values(parameters[0]);
     const bool want_jacobian = jacobians != nullptr && jacobians[0] != nullptr;
     const std::size_t rows = static_cast<std::size_t>(num_residuals());
+    std::lock_guard evaluation(evaluation_mutex_);
     // Ceres asks for the same point up to three times per iteration (the candidate's gradient, its cost,
     // the accepted point's Jacobian): answer repeats from the last evaluation.
     {
@@ -200,10 +202,11 @@ bool PhotoCost::Evaluate(double const* const* parameters, double* residuals, dou
     }
     const std::vector<EnvelopeValue> envelope = level_.evaluator.envelope(values);
     const std::vector<Eigen::Vector2d> shifts = level_.evaluator.blur_shifts(envelope, total_blur2(values));
-    LinearSamples unlit;
+    LinearSamples& unlit = scratch_.unlit;
     unlit.keep_fringe_terms = true;  // for the blur's part of the geometry's derivatives
     unlit_at(values, shifts, want_jacobian, unlit);
-    std::array<std::vector<Eigen::Vector3d>, kPhotoParameterCount> d_linear;
+    std::array<std::vector<Eigen::Vector3d>, kPhotoParameterCount>& d_linear = scratch_.d_linear;
+    for (std::vector<Eigen::Vector3d>& column : d_linear) column.clear();  // empty: a column not computed
     if (want_jacobian) {
         derivatives_at(values, shifts, unlit, envelope, d_linear);
         // The blur moves the figure's sampling point too (shift = σ²·∇ln E).
@@ -211,11 +214,11 @@ bool PhotoCost::Evaluate(double const* const* parameters, double* residuals, dou
             unlit.d_blur2[k] += unlit.d_shift_x[k] * envelope[k].log_gradient.x() + unlit.d_shift_y[k] * envelope[k].log_gradient.y();
         }
     }
-    LinearSamples base = std::move(unlit);
+    LinearSamples& base = unlit;
     level_.evaluator.illuminate(envelope, base);
     if (want_jacobian) {
-        d_linear[kThickness] = std::move(base.d_thickness);
-        d_linear[kBlur] = std::move(base.d_blur2);
+        d_linear[kThickness].swap(base.d_thickness);
+        d_linear[kBlur].swap(base.d_blur2);
     }
     const std::size_t samples = level_.evaluator.sample_count();
     const double c2 = robust_scale_ * robust_scale_;

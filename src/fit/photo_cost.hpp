@@ -57,6 +57,21 @@ private:
     mutable AnalyzerTerms cached_terms_;
     mutable std::vector<InterferenceTerms> leaked_;  // cached_terms_ leaked by the last extinction ratio
     mutable PhaseDerivatives cached_phase_;
+    // Room for an evaluation's intermediate results, kept from one evaluation to the next: they fill tens of
+    // megabytes, which fresh allocations would have the system map and clear at every evaluation. Evaluate holds
+    // evaluation_mutex_ while it uses them.
+    struct Scratch {
+        LinearSamples unlit, moved;
+        std::vector<InterferenceTerms> shifted;
+        std::array<std::vector<Eigen::Vector3d>, kPhotoParameterCount> d_linear;
+        std::array<std::vector<Eigen::Vector3d>, 2> d_xi;
+        std::array<std::vector<double>, 2> d_phase_d_xi;
+        std::vector<double> phase_change;
+        std::vector<Eigen::Vector3d> through_blur;
+        PhaseDerivatives moved_phase, change;
+    };
+    mutable std::mutex evaluation_mutex_;
+    mutable Scratch scratch_;
     // The last evaluation's answer.
     mutable PhotoParameters last_values_{};
     mutable bool last_valid_ = false, last_has_jacobian_ = false;

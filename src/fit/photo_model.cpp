@@ -216,10 +216,10 @@ namespace {
 /// the lattice of field(sample·W + w), per pixel.
 template <typename Field>
 void lattice_derivatives(const SampleLattice& lattice, std::size_t w_count, const Field& field, PhaseDerivatives& out) {
-    const std::size_t size = lattice.pixels.size() * w_count;
-    out.gradient_x.assign(size, 0.0);
-    out.gradient_y.assign(size, 0.0);
-    out.laplacian.assign(size, 0.0);
+    const std::size_t size = lattice.pixels.size() * w_count;  // every entry is written below
+    out.gradient_x.resize(size);
+    out.gradient_y.resize(size);
+    out.laplacian.resize(size);
     const int samples = static_cast<int>(lattice.pixels.size());
     const double stride = lattice.stride_px;
 #pragma omp parallel for schedule(static)
@@ -255,8 +255,7 @@ void PhotoModelEvaluator::phase_derivatives(const std::vector<InterferenceTerms>
 
 void PhotoModelEvaluator::blur_response(const LinearSamples& linear, const PhaseDerivatives& phase, double thickness_um, double blur2_px2,
                                         const std::vector<Eigen::Vector2d>& shifts, const std::vector<double>& phase_change,
-                                        std::vector<Eigen::Vector3d>& out) const {
-    PhaseDerivatives change;
+                                        PhaseDerivatives& change, std::vector<Eigen::Vector3d>& out) const {
     lattice_derivatives(lattice_, wavelength_count(), [&phase_change](std::size_t i) { return phase_change[i]; }, change);
     const std::size_t w_count = wavelength_count();
     const int samples = static_cast<int>(sample_count());

@@ -128,8 +128,9 @@ public:
     /// different amounts at different samples (the field radius, the rotation, the distortion, the centre of
     /// a projection other than the sine) changes them.
     /// `linear` holds the fringe terms of that thickness and blur (keep_fringe_terms).
+    /// `change` is room for the change's derivatives (its contents are overwritten).
     void blur_response(const LinearSamples& linear, const PhaseDerivatives& phase, double thickness_um, double blur2_px2,
-                       const std::vector<Eigen::Vector2d>& shifts, const std::vector<double>& phase_change,
+                       const std::vector<Eigen::Vector2d>& shifts, const std::vector<double>& phase_change, PhaseDerivatives& change,
                        std::vector<Eigen::Vector3d>& out) const;
 
     /// Where a blurred photo of light E·F shows the figure F: blur(E·F) = E·blur(F)(p + σ²∇ln E) to first
