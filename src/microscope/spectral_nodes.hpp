@@ -49,7 +49,7 @@ public:
         }
         return std::abs(last_but_one) + std::abs(last);
     }
-    /// Whether the tail() of every column of `values` (a quantity's node values) is at most `tolerance` (not where one
+    /// Whether the tail() of every column of `values` (a quantity's node values) is at most `tolerance` (false if one
     /// is NaN): several quantities at once, in vector lanes.
     template <int Columns>
     bool tails_within(const Eigen::Matrix<double, kSpectralNodes, Columns>& values, double tolerance) const {

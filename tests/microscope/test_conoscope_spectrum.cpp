@@ -209,9 +209,9 @@ TEST(ConoscopeSpectrum, NodesInterpolatePolynomialsInWavenumberExactly) {
 // exactly, up to the single precision in which NodeColour interpolates the fringe term's amplitude P = Σc₀c₁: the
 // node values, the basis and the eight products and sums each rounded to 2⁻²⁴ of at most Σⱼ|ℓⱼPⱼ| < 3·max|P| (the
 // Lebesgue constant of 8 Chebyshev–Lobatto points is below 3), some 20 roundings, under 4e-6 for |P| < 1, times P's
-// factor 4 in the transmission and the colour weights' sum. A phase of up to 4e3 rad puts hundreds of fringes in the
-// spectrum. Amplitudes with a pole near the visible range give a product too rough to interpolate,
-// which is refused.
+// factor 4 in the transmission and the colour weights' sum. A phase of up to 4e3 rad puts hundreds of fringes in
+// the spectrum. Amplitudes with a pole near the visible range give a product too rough to interpolate, which is
+// refused.
 TEST(ConoscopeSpectrum, ColourFromNodesEqualsTheIntegratedInterpolatedSpectrum) {
     const std::vector<double> grid = WavelengthGrid{380.0, 780.0, 5.0}.wavelengths_nm();
     const detail::SpectralNodes nodes(grid);
