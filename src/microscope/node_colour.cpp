@@ -42,16 +42,14 @@ struct AmplitudeParts {
     std::size_t weights = 0;
 };
 
-// The amplitude Σ_g Σⱼ values[g][j]·rows[g][j·stride + w] over the first Weights spectral weights, at the grid wavelengths
-// begin … begin + length − 1.
+// The amplitude: Σ over the first Weights spectral weights of values[g] interpolated against rows[g], at the grid
+// wavelengths begin … begin + length − 1.
 template <std::size_t Weights>
 void amplitude_chunk(std::size_t stride, std::size_t begin, std::size_t length, const AmplitudeParts& parts, float* out) {
 #pragma omp simd
     for (std::size_t i = 0; i < length; ++i) {
         float sum = 0.0f;
-        for (std::size_t g = 0; g < Weights; ++g) {
-            for (std::size_t j = 0; j < kSpectralNodes; ++j) sum += parts.values[g][j] * parts.rows[g][j * stride + begin + i];
-        }
+        for (std::size_t g = 0; g < Weights; ++g) sum += interpolate_at(parts.rows[g], stride, begin + i, parts.values[g]);
         out[i] = sum;
     }
 }

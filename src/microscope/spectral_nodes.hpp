@@ -75,9 +75,11 @@ inline constexpr double kPhaseTolerance_rad = 1e-3;
 inline constexpr double kFieldTolerance = 1e-4;
 
 /// The interpolant Σⱼ ℓⱼ(w)·values[j] at grid wavelength w (basis and stride of SpectralNodes), as two partial sums
-/// over even and odd j: half the chain of dependent additions, for loops that vectorise over w.
-inline double interpolate_at(const double* basis, std::size_t stride, std::size_t w, const NodeValues& values) {
-    double even = 0.0, odd = 0.0;
+/// over even and odd j: half the chain of dependent additions, for loops that vectorise over w. In double, or in single
+/// precision with single_basis().
+template <typename Real>
+inline Real interpolate_at(const Real* basis, std::size_t stride, std::size_t w, const std::array<Real, kSpectralNodes>& values) {
+    Real even = 0, odd = 0;
     for (std::size_t j = 0; j < kSpectralNodes; j += 2) {
         even += basis[j * stride + w] * values[j];
         odd += basis[(j + 1) * stride + w] * values[j + 1];
