@@ -33,24 +33,82 @@ void interpolate_chunk(const double* basis, std::size_t stride, std::size_t begi
     for (std::size_t i = 0; i < length; ++i) out[i] = interpolate_at(basis, stride, begin + i, values);
 }
 
-// An amplitude of an oscillating term as the node values of each spectral weight it has, in single precision (it is
-// bounded by 1 and needed to kTermTolerance), and the rows of that weight's interpolation basis (ℓⱼ, or ℓⱼ times cos Γ or
-// −sin Γ: NodeColour::Amplitude), the first `weights` of them.
+// An amplitude of an oscillating term, a + cos Γ·r − sin Γ·q (NodeColour::Amplitude), as the node values of a, r and q in
+// single precision (it is bounded by 1 and needed to kTermTolerance), zero where it has none (r and q only behind a
+// plate); bit g of `present` says that values[g] is set.
 struct AmplitudeParts {
     std::array<std::array<float, kSpectralNodes>, 3> values{};
-    std::array<const float*, 3> rows{};
-    std::size_t weights = 0;
+    unsigned present = 0;
 };
 
-// The amplitude: Σ over the first Weights spectral weights of values[g] interpolated against rows[g], at the grid
-// wavelengths begin … begin + length − 1.
-template <std::size_t Weights>
-void amplitude_chunk(std::size_t stride, std::size_t begin, std::size_t length, const AmplitudeParts& parts, float* out) {
+// The parts an amplitude_chunk interpolates, bit g for AmplitudeParts::values[g]: a alone, a and r (an inactive crystal's
+// cos θ amplitude behind a plate), q alone (its sin θ amplitude), all three; none (no second amplitude).
+constexpr unsigned kPlainAmplitude = 1u, kPlainAndInPhase = 3u, kQuadratureOnly = 4u, kAllParts = 7u, kNoAmplitude = 0u;
+
+// Interpolated parts of an amplitude: a, r and q at one wavelength.
+struct PartSums {
+    float a = 0.0f, r = 0.0f, q = 0.0f;
+};
+
+// One amplitude's node values times the basis value `l` of node j added to `sums`, for the parts in Parts.
+template <unsigned Parts>
+inline void accumulate(float l, const AmplitudeParts& parts, std::size_t j, PartSums& sums) {
+    if constexpr ((Parts & 1u) != 0) sums.a += l * parts.values[0][j];
+    if constexpr ((Parts & 2u) != 0) sums.r += l * parts.values[1][j];
+    if constexpr ((Parts & 4u) != 0) sums.q += l * parts.values[2][j];
+}
+
+// a + cos Γ·r − sin Γ·q from the interpolated parts in Parts.
+template <unsigned Parts>
+inline float combined(const PartSums& sums, float plate_cosine, float plate_minus_sine) {
+    float sum = sums.a;
+    if constexpr ((Parts & 2u) != 0) sum += plate_cosine * sums.r;
+    if constexpr ((Parts & 4u) != 0) sum += plate_minus_sine * sums.q;
+    return sum;
+}
+
+// One or two amplitudes (`first`, `second`; `out`) at the grid wavelengths begin … begin + length − 1, each from the parts in First
+// and Second (a superset of those it has: the others are zero): every node quantity is interpolated in the same pass,
+// each basis value loaded once for all, and r and q weighted with the plate's cos Γ and −sin Γ (`plate_cosine`,
+// `plate_minus_sine`).
+template <unsigned First, unsigned Second>
+void amplitude_chunk(const float* basis, const float* plate_cosine, const float* plate_minus_sine, std::size_t stride, std::size_t begin,
+                     std::size_t length, const AmplitudeParts& first_parts, const AmplitudeParts& second_parts, std::array<float*, 2> out) {
 #pragma omp simd
     for (std::size_t i = 0; i < length; ++i) {
-        float sum = 0.0f;
-        for (std::size_t g = 0; g < Weights; ++g) sum += interpolate_at(parts.rows[g], stride, begin + i, parts.values[g]);
-        out[i] = sum;
+        PartSums first, second;
+        for (std::size_t j = 0; j < kSpectralNodes; ++j) {
+            const float l = basis[j * stride + begin + i];
+            accumulate<First>(l, first_parts, j, first);
+            accumulate<Second>(l, second_parts, j, second);
+        }
+        constexpr bool kPlate = ((First | Second) & 6u) != 0;
+        const float cosine = kPlate ? plate_cosine[begin + i] : 0.0f, minus_sine = kPlate ? plate_minus_sine[begin + i] : 0.0f;
+        out[0][i] = combined<First>(first, cosine, minus_sine);
+        if constexpr (Second != kNoAmplitude) out[1][i] = combined<Second>(second, cosine, minus_sine);
+    }
+}
+
+// Whether an amplitude's parts are among `parts`.
+bool within(const AmplitudeParts& amplitude, unsigned parts) { return (amplitude.present & ~parts) == 0; }
+
+// The amplitudes of an oscillating sum (one for a fringe, two for a rotation) in one amplitude_chunk whose parts cover
+// theirs: a fringe's plain amplitude, an optically active crystal's two, an inactive crystal's two behind a plate
+// (a + cos Γ·r and −sin Γ·q), or any others with every part.
+template <std::size_t Count>
+void amplitude_chunks(const float* basis, const float* plate_cosine, const float* plate_minus_sine, std::size_t stride, std::size_t begin,
+                      std::size_t length, const std::array<AmplitudeParts, Count>& parts, std::array<std::array<float, kChunk>, Count>& out) {
+    const AmplitudeParts &first = parts[0], &second = parts[Count - 1];
+    const std::array<float*, 2> to{out[0].data(), out[Count - 1].data()};
+    if constexpr (Count == 1) {
+        if (!within(first, kPlainAmplitude)) throw std::logic_error("NodeColour: a fringe's amplitude with the plate's phase");
+        amplitude_chunk<kPlainAmplitude, kNoAmplitude>(basis, plate_cosine, plate_minus_sine, stride, begin, length, first, second, to);
+    } else if (within(first, kPlainAmplitude) && within(second, kPlainAmplitude)) {
+        amplitude_chunk<kPlainAmplitude, kPlainAmplitude>(basis, plate_cosine, plate_minus_sine, stride, begin, length, first, second, to);
+    } else if (within(first, kPlainAndInPhase) && within(second, kQuadratureOnly)) {
+        amplitude_chunk<kPlainAndInPhase, kQuadratureOnly>(basis, plate_cosine, plate_minus_sine, stride, begin, length, first, second, to);
+    } else {
+        amplitude_chunk<kAllParts, kAllParts>(basis, plate_cosine, plate_minus_sine, stride, begin, length, first, second, to);
     }
 }
 
@@ -86,19 +144,16 @@ NodeColour::NodeColour(const SpectralNodes& nodes, const std::vector<Eigen::Vect
     if (plate_phase_rad.empty()) return;
     if (plate_phase_rad.size() != weights.size()) throw std::invalid_argument("the plate's phase and the colour weights use different grids");
     std::array<std::vector<double>, 3> cosine_weights = channel_weights_, sine_weights = channel_weights_;
-    const std::size_t stride = nodes.padded_grid_size();
-    plate_basis_.assign(2 * kSpectralNodes * stride, 0.0f);
+    plate_cosine_phase_.resize(nodes.padded_grid_size(), 0.0f);
+    plate_minus_sine_phase_.resize(nodes.padded_grid_size(), 0.0f);
     for (std::size_t w = 0; w < weights.size(); ++w) {
         const double cosine = std::cos(plate_phase_rad[w]), sine = std::sin(plate_phase_rad[w]);
         for (std::size_t c = 0; c < 3; ++c) {
             cosine_weights[c][w] *= cosine;
             sine_weights[c][w] *= sine;
         }
-        for (std::size_t j = 0; j < kSpectralNodes; ++j) {
-            const double basis = nodes.basis()[j * stride + w];
-            plate_basis_[j * stride + w] = static_cast<float>(basis * cosine);
-            plate_basis_[(kSpectralNodes + j) * stride + w] = static_cast<float>(-basis * sine);
-        }
+        plate_cosine_phase_[w] = static_cast<float>(cosine);
+        plate_minus_sine_phase_[w] = static_cast<float>(-sine);
     }
     plate_cosine_ = forms_of(nodes, cosine_weights);
     plate_sine_ = forms_of(nodes, sine_weights);
@@ -167,15 +222,13 @@ Eigen::Vector3d NodeColour::oscillating_sum(const SpectralNodes& nodes, const No
     const std::size_t stride = nodes.padded_grid_size(), count = nodes.grid_size();
     std::array<AmplitudeParts, kAmplitudes> parts;
     for (std::size_t a = 0; a < kAmplitudes; ++a) {
-        AmplitudeParts& sum = parts[a];
         for (std::size_t g = 0; g < 3; ++g) {
             if (amplitudes[a][g] == nullptr) continue;
-            if (g > 0 && plate_basis_.empty()) throw std::logic_error("NodeColour: an amplitude with the plate's phase, made without it");
-            std::transform(amplitudes[a][g]->begin(), amplitudes[a][g]->end(), sum.values[sum.weights].begin(),
+            if (g > 0 && plate_cosine_phase_.empty()) throw std::logic_error("NodeColour: an amplitude with the plate's phase, made without it");
+            std::transform(amplitudes[a][g]->begin(), amplitudes[a][g]->end(), parts[a].values[g].begin(),
                            [](double value) { return static_cast<float>(value); });
-            sum.rows[sum.weights++] = g == 0 ? nodes.single_basis() : plate_basis_.data() + (g - 1) * kSpectralNodes * stride;
+            parts[a].present |= 1u << g;
         }
-        if (sum.weights == 0) sum.rows[sum.weights++] = nodes.single_basis();  // a zero amplitude
     }
     const double* basis = nodes.basis();
     double x = 0.0, y = 0.0, z = 0.0;
@@ -184,13 +237,7 @@ Eigen::Vector3d NodeColour::oscillating_sum(const SpectralNodes& nodes, const No
         std::array<double, kChunk> theta;
         std::array<std::array<float, kChunk>, kAmplitudes> v;
         interpolate_chunk(basis, stride, begin, length, angle, theta.data());
-        for (std::size_t a = 0; a < kAmplitudes; ++a) {
-            switch (parts[a].weights) {
-            case 1: amplitude_chunk<1>(stride, begin, length, parts[a], v[a].data()); break;
-            case 2: amplitude_chunk<2>(stride, begin, length, parts[a], v[a].data()); break;
-            default: amplitude_chunk<3>(stride, begin, length, parts[a], v[a].data()); break;
-            }
-        }
+        amplitude_chunks(nodes.single_basis(), plate_cosine_phase_.data(), plate_minus_sine_phase_.data(), stride, begin, length, parts, v);
         const double *w_x = channel_weights_[0].data() + begin, *w_y = channel_weights_[1].data() + begin;
         const double* w_z = channel_weights_[2].data() + begin;
 #pragma omp simd reduction(+ : x, y, z)
@@ -265,7 +312,7 @@ std::optional<Eigen::Vector3d> NodeColour::active_xyz(const SpectralNodes& nodes
 }
 
 std::optional<Eigen::Vector3d> NodeColour::plate_xyz(const SpectralNodes& nodes, const PlateNodeTerms& terms) const {
-    if (plate_basis_.empty()) return std::nullopt;
+    if (plate_cosine_phase_.empty()) return std::nullopt;
     if (!(nodes.tail(terms.angle) <= kPhaseTolerance_rad)) return std::nullopt;
     // The terms that are not zero (PlateNodeTerms); U_i = −T_i.
     const bool cross = terms.cross, active_cross = terms.active && terms.cross;
@@ -273,11 +320,7 @@ std::optional<Eigen::Vector3d> NodeColour::plate_xyz(const SpectralNodes& nodes,
     const std::array<const NodeValues*, 8> checked{&terms.smooth, &terms.cosine, sine_term, cross ? &terms.in_phase : nullptr,
                                                    cross ? &terms.in_phase_cosine : nullptr, active_cross ? &terms.in_phase_sine : nullptr,
                                                    active_cross ? &terms.quadrature : nullptr, cross ? &terms.quadrature_sine : nullptr};
-    Eigen::Matrix<double, kSpectralNodes, 8> columns = Eigen::Matrix<double, kSpectralNodes, 8>::Zero();
-    for (std::size_t m = 0; m < checked.size(); ++m) {
-        if (checked[m] != nullptr) columns.col(static_cast<Eigen::Index>(m)) = Eigen::Map<const Eigen::Matrix<double, kSpectralNodes, 1>>(checked[m]->data());
-    }
-    if (!nodes.tails_within(columns, kTermTolerance)) return std::nullopt;
+    if (!nodes.tails_within(checked, kTermTolerance)) return std::nullopt;
     // Where θ changes little over the spectrum every term is smooth, cos θ and sin θ included: three linear forms in
     // node values, one per spectral weight (W, W·cos Γ, W·sin Γ).
     if (const std::optional<std::array<NodeValues, 2>> cosine_sine = smooth_cosine_sine(nodes, terms.angle)) {

@@ -26,10 +26,11 @@ inline constexpr double kLeastRotation_rad = 1e-6;
 struct PlateNodeTerms {
     bool active = false;  // unless active, Y, V_r, T_i and U_i are zero
     bool cross = false;   // unless cross (an analyzer oblique to the plate's axes), every T, U and V is zero
-    NodeValues angle{};   // θ
-    NodeValues smooth{}, cosine{}, sine{};                       // S, X, Y
-    NodeValues in_phase{}, in_phase_cosine{}, in_phase_sine{};  // T_r, U_r, V_r
-    NodeValues quadrature{}, quadrature_cosine{}, quadrature_sine{};  // T_i, U_i, V_i
+    // Left uninitialised: plate_terms and active_plate_terms write every one (a figure makes two such sets per point).
+    NodeValues angle;  // θ
+    NodeValues smooth, cosine, sine;                           // S, X, Y
+    NodeValues in_phase, in_phase_cosine, in_phase_sine;        // T_r, U_r, V_r
+    NodeValues quadrature, quadrature_cosine, quadrature_sine;  // T_i, U_i, V_i
 };
 
 class NodeColour {
@@ -88,10 +89,9 @@ private:
     Forms plain_;                                         // V = W
     Forms plate_cosine_, plate_sine_;                     // V = W·cos Γ and W·sin Γ (behind a plate)
     std::array<std::vector<double>, 3> channel_weights_;  // per channel: W(w)
-    // Behind a plate, the interpolation basis times cos Γ and times −sin Γ: ℓⱼ(w)·cos Γ(w) in row j, −ℓⱼ(w)·sin Γ(w) in
-    // row kSpectralNodes + j, each of the grid's padded length, in single precision (SpectralNodes::single_basis); empty
-    // without a plate.
-    std::vector<float> plate_basis_;
+    // Behind a plate, cos Γ(w) and −sin Γ(w) at every grid wavelength, padded to SpectralNodes::padded_grid_size() with zeros, in
+    // single precision like the amplitudes they weight; empty without a plate.
+    std::vector<float> plate_cosine_phase_, plate_minus_sine_phase_;
 };
 
 }  // namespace petroscope::detail

@@ -31,7 +31,7 @@ SpectralNodes::SpectralNodes(const std::vector<double>& grid_nm)
         const int k = n - 2 + row;
         for (int j = 0; j < n; ++j) {
             const double ends = (j == 0 || j == n - 1 ? 0.5 : 1.0) * (k == n - 1 ? 0.5 : 1.0);
-            tail_rows_(row, j) = 2.0 / (n - 1) * ends * std::cos(std::numbers::pi * j * k / (n - 1));
+            tail_rows_[row][j] = 2.0 / (n - 1) * ends * std::cos(std::numbers::pi * j * k / (n - 1));
         }
     }
     basis_.assign(kSpectralNodes * padded_size_, 0.0);

@@ -6,7 +6,6 @@
 // the grid, and the interference is evaluated there (docs/theory.md, "White light from spectral nodes").
 #include "petroscope/microscope/conoscope.hpp"
 
-#include <Eigen/Core>
 
 #include <algorithm>
 #include <array>
@@ -43,23 +42,24 @@ public:
     /// (Trefethen, Approximation Theory and Approximation Practice, 2013, Theorems 4.2 and 8.2).
     double tail(const std::array<double, kSpectralNodes>& values) const {
         double last_but_one = 0.0, last = 0.0;
+#pragma omp simd reduction(+ : last_but_one, last)
         for (std::size_t j = 0; j < kSpectralNodes; ++j) {
-            last_but_one += tail_rows_(0, j) * values[j];
-            last += tail_rows_(1, j) * values[j];
+            last_but_one += tail_rows_[0][j] * values[j];
+            last += tail_rows_[1][j] * values[j];
         }
         return std::abs(last_but_one) + std::abs(last);
     }
-    /// Whether the tail() of every column of `values` (a quantity's node values) is at most `tolerance` (false if one
-    /// is NaN): several quantities at once, in vector lanes.
-    template <int Columns>
-    bool tails_within(const Eigen::Matrix<double, kSpectralNodes, Columns>& values, double tolerance) const {
-        const Eigen::Matrix<double, 2, Columns> last_two = tail_rows_.lazyProduct(values);
-        return ((last_two.row(0).cwiseAbs() + last_two.row(1).cwiseAbs()).array() <= tolerance).all();
+    /// Whether the tail() of each of `quantities` (nullptr: none) is at most `tolerance` (false if one is NaN).
+    template <std::size_t Count>
+    bool tails_within(const std::array<const std::array<double, kSpectralNodes>*, Count>& quantities, double tolerance) const {
+        bool within = true;
+        for (const std::array<double, kSpectralNodes>* values : quantities) within &= values == nullptr || tail(*values) <= tolerance;
+        return within;
     }
 
 private:
     std::array<double, kSpectralNodes> nodes_nm_{};
-    Eigen::Matrix<double, 2, kSpectralNodes> tail_rows_;  // c₆ and c₇ from the node values
+    std::array<std::array<double, kSpectralNodes>, 2> tail_rows_{};  // c₆ and c₇ from the node values
     std::size_t grid_size_ = 0, padded_size_ = 0;
     std::vector<double> basis_;
     std::vector<float> single_basis_;
@@ -75,11 +75,9 @@ inline constexpr double kPhaseTolerance_rad = 1e-3;
 inline constexpr double kFieldTolerance = 1e-4;
 
 /// The interpolant Σⱼ ℓⱼ(w)·values[j] at grid wavelength w (basis and stride of SpectralNodes), as two partial sums
-/// over even and odd j: half the chain of dependent additions, for loops that vectorise over w. In double, or in single
-/// precision with single_basis().
-template <typename Real>
-inline Real interpolate_at(const Real* basis, std::size_t stride, std::size_t w, const std::array<Real, kSpectralNodes>& values) {
-    Real even = 0, odd = 0;
+/// over even and odd j: half the chain of dependent additions, for loops that vectorise over w.
+inline double interpolate_at(const double* basis, std::size_t stride, std::size_t w, const NodeValues& values) {
+    double even = 0.0, odd = 0.0;
     for (std::size_t j = 0; j < kSpectralNodes; j += 2) {
         even += basis[j * stride + w] * values[j];
         odd += basis[(j + 1) * stride + w] * values[j + 1];
