@@ -559,8 +559,12 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
     // field on a lattice of about this many pixels.
     const double sampled_area = std::min(std::numbers::pi * sample_radius * sample_radius, static_cast<double>(photo.width) * photo.height);
     const auto stride = [&](double samples) { return std::max(1, static_cast<int>(std::lround(std::sqrt(sampled_area / samples)))); };
+    // The figure's terms are interpolated from spectral nodes where that holds the phase to 1e-3 rad at the thickest
+    // slab fitted (ConoscopeTerms).
+    ConoscopePhotoModel terms_model = model;
+    terms_model.settings.thickness_um = bounds.upper[index_of(PhotoParameter::thickness_um)];
     const auto level = [&](int lattice_stride, double extra_blur) {
-        return std::make_unique<PhotoLevel>(model, detail::sample_lattice(centre, sample_radius, lattice_stride, photo.width, photo.height),
+        return std::make_unique<PhotoLevel>(terms_model, detail::sample_lattice(centre, sample_radius, lattice_stride, photo.width, photo.height),
                                             photo, extra_blur, at(start, PhotoParameter::gamma), options.saturated_level);
     };
     const int search_stride = stride(2500.0), coarse_stride = stride(5000.0);
@@ -675,7 +679,7 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
             for (int c = 0; c < 3; ++c) best_fit.at(static_cast<int>(pixel.x()), static_cast<int>(pixel.y()), c) = static_cast<float>(matched[k][c]);
         }
         const Image encoded = options.photo_encoding(best_fit);
-        const detail::PhotoLevel encoded_level(model, fine->evaluator.lattice(), encoded, 0.0,
+        const detail::PhotoLevel encoded_level(terms_model, fine->evaluator.lattice(), encoded, 0.0,
                                                at(start, PhotoParameter::gamma), options.saturated_level);
         PhotoParameters refitted = result.values;
         solve_level(encoded_level, refitted, options, final_bounds, 40, 1e-8, result.iterations, relay);

@@ -114,7 +114,8 @@ void PhotoCost::direction_columns(const PhotoParameters& values, const std::vect
     std::vector<double>& phase_change = scratch_.phase_change;
     std::vector<Eigen::Vector3d>& through_blur = scratch_.through_blur;
     for (std::size_t axis = 0; axis < 2; ++axis) {
-        level_.evaluator.terms(values, shifted, kXiStep * (axis == 0 ? Eigen::Vector2d::UnitX() : Eigen::Vector2d::UnitY()));
+        level_.evaluator.terms(values, shifted, kXiStep * (axis == 0 ? Eigen::Vector2d::UnitX() : Eigen::Vector2d::UnitY()),
+                               &cached_terms_.from_nodes);
         level_.evaluator.linear(shifted, cached_phase_, values[kThickness], blur2, shifts, false, moved);
         d_xi[axis].resize(samples);
         for (std::size_t k = 0; k < samples; ++k) d_xi[axis][k] = (moved.rgb[k] - unlit.rgb[k]) / kXiStep;
@@ -157,7 +158,7 @@ void PhotoCost::derivatives_at(const PhotoParameters& values, const std::vector<
         if (!free_[j]) continue;
         PhotoParameters turned = values;
         turned[j] += kAngleStep;
-        level_.evaluator.terms(turned, shifted);
+        level_.evaluator.terms(turned, shifted, Eigen::Vector2d::Zero(), &cached_terms_.from_nodes);
         level_.evaluator.phase_derivatives(shifted, moved_phase);
         level_.evaluator.linear(shifted, moved_phase, values[kThickness], blur2, shifts, false, moved);
         d_linear[j].resize(samples);

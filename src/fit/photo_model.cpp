@@ -152,18 +152,20 @@ void leaked_terms(const AnalyzerTerms& terms, double extinction_ratio, std::vect
 PhotoModelEvaluator::PhotoModelEvaluator(const ConoscopePhotoModel& model, SampleLattice lattice)
     : model_(model), lattice_(std::move(lattice)) {}
 
-void PhotoModelEvaluator::analyzer_terms(const PhotoParameters& values, bool with_blocked, AnalyzerTerms& out,
-                                         const Eigen::Vector2d& xi_offset) const {
+void PhotoModelEvaluator::analyzer_terms(const PhotoParameters& values, bool with_blocked, AnalyzerTerms& out, const Eigen::Vector2d& xi_offset,
+                                         const std::vector<unsigned char>* as_before) const {
     ConoscopeSettings settings = model_.settings;
+    settings.thickness_um = std::max(settings.thickness_um, at(values, PhotoParameter::thickness_um));
     settings.crystal_axes = model_.orientation(at(values, PhotoParameter::tilt_deg), at(values, PhotoParameter::azimuth_deg));
     settings.analyzer_deg += at(values, PhotoParameter::analyzer_offset_deg);
     std::vector<Eigen::Vector2d> xis(sample_count());
     for (std::size_t k = 0; k < xis.size(); ++k) xis[k] = pixel_direction(model_, values, lattice_.pixels[k]) + xi_offset;
-    ConoscopeTerms(settings, model_.principal_n).evaluate(xis, out.passed);
+    if (as_before != nullptr) out.from_nodes = *as_before;
+    ConoscopeTerms(settings, model_.principal_n).evaluate(xis, out.passed, as_before == nullptr ? &out.from_nodes : nullptr, as_before);
     out.blocked.clear();
     if (with_blocked || at(values, PhotoParameter::extinction_ratio) != 0.0) {
         settings.analyzer_deg += 90.0;
-        ConoscopeTerms(settings, model_.principal_n).evaluate(xis, out.blocked);
+        ConoscopeTerms(settings, model_.principal_n).evaluate(xis, out.blocked, nullptr, &out.from_nodes);
     }
     // No light reaches the objective (in air) from beyond grazing, |ξ| ≥ 1: where a projection shows no
     // direction, and where a geometry far from the photo's (a small field, a centre off the image) maps
@@ -177,10 +179,11 @@ void PhotoModelEvaluator::analyzer_terms(const PhotoParameters& values, bool wit
     }
 }
 
-void PhotoModelEvaluator::terms(const PhotoParameters& values, std::vector<InterferenceTerms>& out, const Eigen::Vector2d& xi_offset) const {
+void PhotoModelEvaluator::terms(const PhotoParameters& values, std::vector<InterferenceTerms>& out, const Eigen::Vector2d& xi_offset,
+                                const std::vector<unsigned char>* as_before) const {
     AnalyzerTerms parts;
     parts.passed.swap(out);  // the caller's buffer, reused (the terms fill tens of megabytes)
-    analyzer_terms(values, false, parts, xi_offset);
+    analyzer_terms(values, false, parts, xi_offset, as_before);
     if (parts.blocked.empty()) {
         out.swap(parts.passed);
         return;

@@ -67,6 +67,7 @@ EnvelopeValue illumination_envelope(const ConoscopePhotoModel& model, const Phot
 /// second is empty unless asked for. Both have the same phases: the modes do not depend on the analyzer.
 struct AnalyzerTerms {
     std::vector<InterferenceTerms> passed, blocked;
+    std::vector<unsigned char> from_nodes;  // per sample: the terms came from the spectral nodes (ConoscopeTerms::evaluate)
 };
 
 /// passed + extinction_ratio · blocked (passed alone when blocked is empty).
@@ -99,12 +100,14 @@ public:
 
     /// The interference terms of every sample at every wavelength, out[sample·W + w], for the geometry
     /// (centre, radius, rotation, distortion, tilt, azimuth) and the analyzer of `values`, each ξ moved by
-    /// `xi_offset` (for ∂/∂ξ). The blocked terms are computed when `with_blocked` or the analyzer leaks.
+    /// `xi_offset` (for ∂/∂ξ). The blocked terms are computed when `with_blocked` or the analyzer leaks. Each
+    /// sample's terms come from the spectral nodes or every wavelength as `as_before` says (an earlier call's
+    /// from_nodes, for derivatives by differences), or as ConoscopeTerms chooses without it.
     void analyzer_terms(const PhotoParameters& values, bool with_blocked, AnalyzerTerms& out,
-                        const Eigen::Vector2d& xi_offset = Eigen::Vector2d::Zero()) const;
+                        const Eigen::Vector2d& xi_offset = Eigen::Vector2d::Zero(), const std::vector<unsigned char>* as_before = nullptr) const;
     /// The terms of what reaches the camera: analyzer_terms leaked by the extinction ratio.
-    void terms(const PhotoParameters& values, std::vector<InterferenceTerms>& out,
-               const Eigen::Vector2d& xi_offset = Eigen::Vector2d::Zero()) const;
+    void terms(const PhotoParameters& values, std::vector<InterferenceTerms>& out, const Eigen::Vector2d& xi_offset = Eigen::Vector2d::Zero(),
+               const std::vector<unsigned char>* as_before = nullptr) const;
 
     /// The illumination envelope at every sample.
     std::vector<EnvelopeValue> envelope(const PhotoParameters& values) const;

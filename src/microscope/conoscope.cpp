@@ -11,6 +11,7 @@
 #include <cmath>
 #include <functional>
 #include <memory>
+#include <stdexcept>
 
 namespace petroscope {
 
@@ -66,25 +67,39 @@ ConoscopeTerms::ConoscopeTerms(const ConoscopeSettings& settings, const Principa
     : settings_(settings) {
     settings_.validate();
     if (settings_.plate || settings_.mounting) throw InputError("interference terms are defined for a slab without a plate or mounting only");
-    settings_.spectrum = SpectrumSampling::exact;  // the terms are solved at every wavelength
     wavelength_count_ = settings_.wavelengths_nm.size();
     evaluator_ = std::make_unique<detail::ConoscopeEvaluator>(settings_, principal_n);
 }
 
 ConoscopeTerms::~ConoscopeTerms() = default;
 
-void ConoscopeTerms::evaluate(const std::vector<Eigen::Vector2d>& xis, std::vector<InterferenceTerms>& out) const {
+void ConoscopeTerms::evaluate(const std::vector<Eigen::Vector2d>& xis, std::vector<InterferenceTerms>& out, std::vector<unsigned char>* from_nodes,
+                              const std::vector<unsigned char>* as_before) const {
     const std::size_t count = wavelength_count_;
+    if (as_before != nullptr && as_before->size() != xis.size()) throw std::invalid_argument("ConoscopeTerms: as_before has another number of points");
     out.resize(xis.size() * count);
+    if (from_nodes != nullptr) from_nodes->assign(xis.size(), 0);
     const int points = static_cast<int>(xis.size());
 #pragma omp parallel
     {
-        detail::KernelScratch scratch;
-        bool continues = false;
+        detail::KernelScratch nodes, every_wavelength;
+        // Each scratch's roots start the next point's iterations once it has solved a point.
+        bool nodes_continue = false, every_wavelength_continues = false;
 #pragma omp for schedule(static)
         for (int k = 0; k < points; ++k) {
-            evaluator_->spectral_terms(xis[static_cast<std::size_t>(k)], scratch, continues, out.data() + static_cast<std::size_t>(k) * count);
-            continues = true;
+            const auto point = static_cast<std::size_t>(k);
+            InterferenceTerms* terms = out.data() + point * count;
+            const bool try_nodes = as_before == nullptr || (*as_before)[point] != 0;
+            bool interpolated = false;
+            if (try_nodes) {
+                interpolated = evaluator_->node_terms(xis[point], nodes, nodes_continue, as_before == nullptr, terms);
+                nodes_continue = true;
+            }
+            if (!interpolated) {
+                evaluator_->spectral_terms(xis[point], every_wavelength, every_wavelength_continues, terms);
+                every_wavelength_continues = true;
+            }
+            if (from_nodes != nullptr) (*from_nodes)[point] = interpolated ? 1 : 0;
         }
     }
 }

@@ -187,6 +187,16 @@ void ConoscopeEvaluator::spectral_terms(const Eigen::Vector2d& xi, KernelScratch
     }
 }
 
+bool ConoscopeEvaluator::node_terms(const Eigen::Vector2d& xi, KernelScratch& scratch, bool continues_row, bool checked,
+                                    InterferenceTerms* out) const {
+    if (!nodes_ || !plate_jones_lab_.empty()) return false;
+    if (solve_modes(*node_samples_, polars_, xi, scratch, continues_row, KernelOutput::fields) || !smooth_over_spectrum(scratch)) return false;
+    const std::optional<RotationNodeTerms> terms = node_rotation_terms(scratch);
+    if (!terms || (checked && !interpolable(*nodes_, *terms))) return false;
+    interpolated_terms(*nodes_, *terms, settings_.thickness_um, out);
+    return true;
+}
+
 void ConoscopeEvaluator::monochromatic_pairs(const std::vector<Eigen::Vector2d>& xis, KernelScratch& scratch,
                                              double* out_plus, double* out_minus) const {
     if (xis.empty()) return;

@@ -64,6 +64,13 @@ public:
     /// modulation·cos(phase_per_um·d) for a slab d µm thick. `continues_row` as for spectral_pair.
     void spectral_terms(const Eigen::Vector2d& xi, KernelScratch& scratch, bool continues_row, InterferenceTerms* out) const;
 
+    /// spectral_terms from the spectral nodes: the terms formed at the nodes (node_rotation_terms) and interpolated
+    /// (interpolated_terms), their phase that of the settings' thickness, at which its interpolation error (1e-3 rad at
+    /// most) is judged. False, with nothing written, where the settings do not interpolate the spectrum or have a plate,
+    /// the modes at the nodes failed or lie too near a binormal, or (when `checked`) a term is too rough to interpolate
+    /// (interpolable). `continues_row` as for spectral_pair, for the nodes in `scratch`.
+    bool node_terms(const Eigen::Vector2d& xi, KernelScratch& scratch, bool continues_row, bool checked, InterferenceTerms* out) const;
+
     /// The reference path alone, at wavelength index `w`: the transmission for (ξ, −ξ).
     std::array<double, 2> reference_pair(std::size_t w, const Eigen::Vector2d& xi) const;
 
@@ -82,6 +89,10 @@ private:
     /// evaluator has no colour weights or the product of the amplitudes is too rough to interpolate.
     bool colour_from_nodes(const KernelScratch& scratch, const std::array<std::array<NodeValues, 4>, 2>& side_fields,
                            const std::array<NodeValues, 2>& side_phase, PairColour& colour) const;
+    /// ξ's transmission S + X cos θ + Y sin θ at the nodes, from the node fields in `scratch` (run with KernelOutput::fields):
+    /// the analyzed pairs' c₀² + c₁² and 2c₀c₁ with θ = δ, or an optically active crystal's active_node_terms; none where
+    /// those are (Ω vanishes at a node).
+    std::optional<RotationNodeTerms> node_rotation_terms(const KernelScratch& scratch) const;
     /// The node fields of one side in the lab: x of the fast and slow mode, then y of the fast and slow mode.
     std::array<NodeValues, 4> lab_node_fields(const KernelScratch& scratch, int side, const std::array<NodeValues, 4>& fields) const;
     /// The node amplitude pairs behind the analyzer (one pair) or on ŝ and ρ̂ without it (two) of one side without

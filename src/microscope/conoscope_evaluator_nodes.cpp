@@ -142,6 +142,34 @@ bool ConoscopeEvaluator::interpolated_pair(const KernelScratch& scratch, double*
     return true;
 }
 
+std::optional<RotationNodeTerms> ConoscopeEvaluator::node_rotation_terms(const KernelScratch& scratch) const {
+    std::array<NodeValues, 4> fields, coupled;
+    NodeValues phase, product;
+    for (std::size_t j = 0; j < kSpectralNodes; ++j) {
+        for (std::size_t c = 0; c < 4; ++c) fields[c][j] = scratch.mode_field[0][c][j];
+        phase[j] = scratch.phase_difference[0][j];
+    }
+    if (!gyration_lab_.empty()) {
+        for (std::size_t j = 0; j < kSpectralNodes; ++j) {
+            for (std::size_t c = 0; c < 4; ++c) coupled[c][j] = scratch.coupled_field[0][c][j];
+            product[j] = scratch.coupling_product[0][j];
+        }
+        return active_node_terms(active_node_fields(scratch, 0, fields, coupled, product), phase);
+    }
+    // |c₀e^{iφ₀} + c₁e^{iφ₁}|² = c₀² + c₁² + 2c₀c₁·cos δ for each analyzed pair (interference.hpp, pair_terms).
+    int pairs = 1;
+    const std::array<NodeValues, 4> amplitudes = analyzed_node_amplitudes(scratch, 0, fields, pairs);
+    RotationNodeTerms terms;
+    terms.angle = phase;
+    for (std::size_t j = 0; j < kSpectralNodes; ++j) {
+        for (std::size_t k = 0; k < 4; k += 2) {
+            terms.smooth[j] += amplitudes[k][j] * amplitudes[k][j] + amplitudes[k + 1][j] * amplitudes[k + 1][j];
+            terms.cosine[j] += 2.0 * amplitudes[k][j] * amplitudes[k + 1][j];
+        }
+    }
+    return terms;
+}
+
 std::array<NodeValues, 4> ConoscopeEvaluator::lab_node_fields(const KernelScratch& scratch, int side, const std::array<NodeValues, 4>& fields) const {
     // E = s ŝ + p ρ̂, where the plate's analyzers are.
     const SideFrame frame = side_frame(scratch, side);

@@ -22,9 +22,6 @@ bool narrow_range(const NodeValues& angle) {
     const auto [least, most] = std::minmax_element(angle.begin(), angle.end());
     return *most - *least <= kSmoothFringePhaseRange_rad;
 }
-// An optically active crystal's terms (active_xyz) and a plate's (plate_xyz): θ within kPhaseTolerance_rad, as δ elsewhere
-// (spectral_nodes.hpp), and each term within 1e-4 of the transmission.
-constexpr double kTermTolerance = 1e-4;
 
 // `values` interpolated to the grid wavelengths begin … begin + length − 1, one quantity at a time: its eight node
 // values stay in vector registers, where several quantities at once would spill them to memory.
@@ -278,33 +275,9 @@ std::optional<Eigen::Vector3d> NodeColour::smooth_rotation(const SpectralNodes& 
 
 std::optional<Eigen::Vector3d> NodeColour::active_xyz(const SpectralNodes& nodes, const ActiveNodeFields& fields,
                                                       const NodeValues& phase_difference) const {
-    // Per component k at node j, with h = δ/2 and Ω = √(h² + b₀b₁) (spectral_nodes.hpp, interpolated_active_transmission):
-    // |R + iI|² = cos²Ω·A² + 2cosΩ·(sinΩ/Ω)·AB + (sin²Ω/Ω²)·(B² + h²C²) with A = F₀ + F₁, B = G₁ − G₀, C = F₀ − F₁,
-    // which is S + X·cos 2Ω + Y·sin 2Ω with D = (B² + h²C²)/Ω², S = (A² + D)/2, X = (A² − D)/2, Y = AB/Ω; the
-    // components' S, X, Y add.
-    NodeValues smooth{}, cosine_part{}, sine_part{}, two_omega{};
-    const std::array<NodeValues, 4>&first = fields.component[0], &second = fields.component[1];
-    const double second_weight = fields.components == 2 ? 1.0 : 0.0;
-    double least_omega = std::numeric_limits<double>::infinity();
-#pragma omp simd reduction(min : least_omega)
-    for (std::size_t j = 0; j < kSpectralNodes; ++j) {
-        const double h = 0.5 * phase_difference[j];
-        const double omega = active_rotation(h, fields.coupling_product[j]);
-        least_omega = std::min(least_omega, omega);
-        two_omega[j] = 2.0 * omega;
-        const double inverse_omega = 1.0 / std::max(omega, kLeastRotation_rad);
-        const ActiveSums u = active_sums(first, j), v = active_sums(second, j);
-        const double a_squared = u.a * u.a + second_weight * v.a * v.a;
-        const double d = (u.b * u.b + h * h * u.c * u.c + second_weight * (v.b * v.b + h * h * v.c * v.c)) * inverse_omega * inverse_omega;
-        smooth[j] = 0.5 * (a_squared + d);
-        cosine_part[j] = 0.5 * (a_squared - d);
-        sine_part[j] = (u.a * u.b + second_weight * v.a * v.b) * inverse_omega;
-    }
-    if (!(least_omega > kLeastRotation_rad)) return std::nullopt;
-    if (!(nodes.tail(two_omega) <= kPhaseTolerance_rad)) return std::nullopt;
-    for (const NodeValues* part : {&smooth, &cosine_part, &sine_part}) {
-        if (!(nodes.tail(*part) <= kTermTolerance)) return std::nullopt;
-    }
+    const std::optional<RotationNodeTerms> terms = active_node_terms(fields, phase_difference);
+    if (!terms || !interpolable(nodes, *terms)) return std::nullopt;
+    const auto& [smooth, cosine_part, sine_part, two_omega] = *terms;
     const std::optional<Eigen::Vector3d> smooth_in_wavelength = smooth_rotation(nodes, two_omega, cosine_part, sine_part);
     const Eigen::Vector3d oscillating =
         smooth_in_wavelength ? *smooth_in_wavelength : oscillating_sum<Oscillation::rotation>(nodes, two_omega, {Amplitude{&cosine_part}, Amplitude{&sine_part}});

@@ -15,9 +15,6 @@
 
 namespace petroscope::detail {
 
-/// Below this Ω at a node (no coupling on an optic axis) an optically active crystal's terms, which hold 1/Ω, are
-/// left to the spectrum.
-inline constexpr double kLeastRotation_rad = 1e-6;
 
 /// A point's transmission behind an accessory plate that is diag(μ₁, μ₂) on its two axes (plate_terms.hpp), with
 /// e^{iΓ} = μ̄₁μ₂/|μ₁μ₂| and θ = δ (inactive) or 2Ω (optically active):

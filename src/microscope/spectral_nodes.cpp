@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace petroscope::detail {
@@ -97,6 +98,67 @@ void interpolated_transmission(const SpectralNodes& nodes, const std::array<Node
             return pair_intensity(c0, c1, sin2) + pair_intensity(c2, c3, sin2);
         });
     }
+}
+
+void interpolated_terms(const SpectralNodes& nodes, const RotationNodeTerms& terms, double thickness_um, InterferenceTerms* out) {
+    // In chunks: the interpolation in vector lanes over the wavelengths into arrays, then the terms' fields.
+    constexpr std::size_t kChunk = 64;
+    const double* basis = nodes.basis();
+    const std::size_t stride = nodes.padded_grid_size(), count = nodes.grid_size();
+    const auto& [smooth, cosine, sine, angle] = terms;
+    const double per_um = 1.0 / thickness_um;
+    for (std::size_t begin = 0; begin < count; begin += kChunk) {
+        const std::size_t length = std::min(kChunk, count - begin);
+        std::array<double, kChunk> mean, modulation, sine_modulation, phase;
+#pragma omp simd
+        for (std::size_t i = 0; i < length; ++i) {
+            double s = 0.0, x = 0.0, y = 0.0, theta = 0.0;
+            for (std::size_t j = 0; j < kSpectralNodes; ++j) {
+                const double b = basis[j * stride + begin + i];
+                s += b * smooth[j];
+                x += b * cosine[j];
+                y += b * sine[j];
+                theta += b * angle[j];
+            }
+            mean[i] = s;
+            modulation[i] = x;
+            sine_modulation[i] = y;
+            phase[i] = theta * per_um;
+        }
+        for (std::size_t i = 0; i < length; ++i) out[begin + i] = {mean[i], modulation[i], phase[i], sine_modulation[i]};
+    }
+}
+
+std::optional<RotationNodeTerms> active_node_terms(const ActiveNodeFields& fields, const NodeValues& phase_difference) {
+    // Per component k at node j, with h = δ/2 and Ω = √(h² + b₀b₁) (spectral_nodes.hpp, interpolated_active_transmission):
+    // |R + iI|² = cos²Ω·A² + 2cosΩ·(sinΩ/Ω)·AB + (sin²Ω/Ω²)·(B² + h²C²) with A = F₀ + F₁, B = G₁ − G₀, C = F₀ − F₁,
+    // which is S + X·cos 2Ω + Y·sin 2Ω with D = (B² + h²C²)/Ω², S = (A² + D)/2, X = (A² − D)/2, Y = AB/Ω; the
+    // components' S, X, Y add.
+    RotationNodeTerms terms;
+    const std::array<NodeValues, 4>&first = fields.component[0], &second = fields.component[1];
+    const double second_weight = fields.components == 2 ? 1.0 : 0.0;
+    double least_omega = std::numeric_limits<double>::infinity();
+#pragma omp simd reduction(min : least_omega)
+    for (std::size_t j = 0; j < kSpectralNodes; ++j) {
+        const double h = 0.5 * phase_difference[j];
+        const double omega = active_rotation(h, fields.coupling_product[j]);
+        least_omega = std::min(least_omega, omega);
+        terms.angle[j] = 2.0 * omega;
+        const double inverse_omega = 1.0 / std::max(omega, kLeastRotation_rad);
+        const ActiveSums u = active_sums(first, j), v = active_sums(second, j);
+        const double a_squared = u.a * u.a + second_weight * v.a * v.a;
+        const double d = (u.b * u.b + h * h * u.c * u.c + second_weight * (v.b * v.b + h * h * v.c * v.c)) * inverse_omega * inverse_omega;
+        terms.smooth[j] = 0.5 * (a_squared + d);
+        terms.cosine[j] = 0.5 * (a_squared - d);
+        terms.sine[j] = (u.a * u.b + second_weight * v.a * v.b) * inverse_omega;
+    }
+    if (!(least_omega > kLeastRotation_rad)) return std::nullopt;
+    return terms;
+}
+
+bool interpolable(const SpectralNodes& nodes, const RotationNodeTerms& terms) {
+    return nodes.tail(terms.angle) <= kPhaseTolerance_rad &&
+           nodes.tails_within(std::array<const NodeValues*, 3>{&terms.smooth, &terms.cosine, &terms.sine}, kTermTolerance);
 }
 
 void interpolated_transmission(const SpectralNodes& nodes, const std::array<NodeValues, 4>& lab_fields, const NodeValues& phase_difference,

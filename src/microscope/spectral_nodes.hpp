@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 namespace petroscope::detail {
@@ -126,6 +127,32 @@ struct ActiveSums {
 inline ActiveSums active_sums(const std::array<NodeValues, 4>& component, std::size_t j) {
     return {component[0][j] + component[1][j], component[3][j] - component[2][j], component[0][j] - component[1][j]};
 }
+
+/// Below this Ω at a node (no coupling on an optic axis) an optically active crystal's terms, which hold 1/Ω, are
+/// left to the spectrum.
+inline constexpr double kLeastRotation_rad = 1e-6;
+
+/// An optically active crystal's terms (active_node_terms) and a plate's (NodeColour::plate_xyz) are interpolated where θ
+/// is within kPhaseTolerance_rad, as δ elsewhere (spectral_nodes.hpp), and each term within 1e-4 of the transmission.
+inline constexpr double kTermTolerance = 1e-4;
+
+/// A point's transmission S + X cos θ + Y sin θ at the nodes, with θ = 2Ω (an optically active crystal) or θ = δ and
+/// Y = 0 (an inactive one), S, X, Y and θ smooth over the spectrum.
+struct RotationNodeTerms {
+    NodeValues smooth{}, cosine{}, sine{}, angle{};  // S, X, Y, θ
+};
+
+/// Those of an optically active crystal without a plate, the components' S, X and Y added (NodeColour::active_xyz); none
+/// where Ω is below kLeastRotation_rad at a node.
+std::optional<RotationNodeTerms> active_node_terms(const ActiveNodeFields& fields, const NodeValues& phase_difference);
+
+/// Whether θ is interpolated within kPhaseTolerance_rad and S, X, Y within kTermTolerance (SpectralNodes::tail).
+bool interpolable(const SpectralNodes& nodes, const RotationNodeTerms& terms);
+
+/// The interference terms (conoscope.hpp, InterferenceTerms) at every grid wavelength from `terms` at the nodes, θ being
+/// that of a slab `thickness_um` thick: mean S, modulation X, sine_modulation Y and phase_per_um θ/thickness_um, all
+/// interpolated.
+void interpolated_terms(const SpectralNodes& nodes, const RotationNodeTerms& terms, double thickness_um, InterferenceTerms* out);
 
 /// Transmission at every grid wavelength of an optically active crystal: each component of the field leaving
 /// the slab is R + iI with R = cos Ω·(F₀ + F₁) + (sin Ω/Ω)·(G₁ − G₀) and I = (sin Ω/Ω)·(δ/2)·(F₀ − F₁),

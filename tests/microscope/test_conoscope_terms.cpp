@@ -10,6 +10,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
+
 namespace petroscope {
 namespace {
 
@@ -63,6 +66,89 @@ INSTANTIATE_TEST_SUITE_P(Minerals, ConoscopeTermsTest,
                                            TermsCase{"quartz", Cut::optic_axis, 0.0, false, true},
                                            TermsCase{"muscovite", Cut::acute_bisectrix, 0.0, true},
                                            TermsCase{"forsterite", Cut::acute_bisectrix, 15.0, false}));
+
+// In white light the terms come from the spectral nodes where they can; they must match the terms solved at every
+// wavelength within what the nodes' error bounds allow: 1e-4 in each term (so 3e-4 in a transmission) and 1e-3 rad in
+// the phase at the thickest slab, settings.thickness_um.
+struct NodeTermsCase {
+    const char* mineral;
+    Cut cut;
+    double tilt_deg;
+    double thickest_um;
+    bool optically_active = false;
+};
+
+class ConoscopeNodeTermsTest : public ::testing::TestWithParam<NodeTermsCase> {};
+
+TEST_P(ConoscopeNodeTermsTest, MatchEveryWavelengthSolvedUpToTheThickestSlab) {
+    const NodeTermsCase& c = GetParam();
+    const Mineral& mineral = testing::repository_minerals().find(c.mineral);
+    ConoscopeSettings settings = testing::figure_settings(mineral, c.cut, c.thickest_um, 64);
+    settings.crystal_axes = cut_orientation(c.cut, mineral.optical_class, mineral.principal_n(mineral.reference_wavelength_nm), 30.0, c.tilt_deg);
+    settings.wavelengths_nm = WavelengthGrid{380.0, 780.0, 5.0}.wavelengths_nm();
+    settings.polarizer_deg = 10.0;
+    settings.analyzer_deg = 100.0;
+    if (c.optically_active) settings.gyration = mineral_gyration(mineral, Handedness::right);
+    const PrincipalIndexFunction indices = testing::indices_of(mineral);
+    // A lattice over the field, row by row (warm starts), the axis included.
+    std::vector<Eigen::Vector2d> xis;
+    for (int row = -8; row <= 8; ++row) {
+        for (int column = -8; column <= 8; ++column) {
+            if (row * row + column * column <= 64) xis.emplace_back(0.1 * column, 0.1 * row);
+        }
+    }
+    std::vector<InterferenceTerms> from_nodes, exact;
+    std::vector<unsigned char> paths;
+    ConoscopeTerms(settings, indices).evaluate(xis, from_nodes, &paths);
+    ConoscopeSettings every_wavelength = settings;
+    every_wavelength.spectrum = SpectrumSampling::exact;
+    ConoscopeTerms(every_wavelength, indices).evaluate(xis, exact);
+    const std::size_t interpolated = static_cast<std::size_t>(std::count(paths.begin(), paths.end(), 1));
+    EXPECT_GT(interpolated, xis.size() / 2) << "most points come from the nodes";
+    double worst = 0.0;
+    for (const double thickness_um : {0.3 * c.thickest_um, c.thickest_um}) {
+        for (std::size_t i = 0; i < exact.size(); ++i) {
+            worst = std::max(worst, std::abs(from_nodes[i].transmission(thickness_um) - exact[i].transmission(thickness_um)));
+        }
+    }
+    EXPECT_LT(worst, 1.3e-3) << c.mineral;
+    std::printf("%s, thickest %.0f um: %zu of %zu points from the nodes, largest transmission difference %.2g\n", c.mineral, c.thickest_um,
+                interpolated, xis.size(), worst);
+}
+
+INSTANTIATE_TEST_SUITE_P(Minerals, ConoscopeNodeTermsTest,
+                         ::testing::Values(NodeTermsCase{"calcite", Cut::optic_axis, 0.0, 100.0}, NodeTermsCase{"calcite", Cut::optic_axis, 20.0, 10000.0},
+                                           NodeTermsCase{"muscovite", Cut::acute_bisectrix, 0.0, 2000.0},
+                                           NodeTermsCase{"aragonite", Cut::acute_bisectrix, 10.0, 10000.0},
+                                           NodeTermsCase{"quartz", Cut::optic_axis, 0.0, 10000.0, true},
+                                           NodeTermsCase{"quartz", Cut::optic_axis, 15.0, 2000.0, true}));
+
+// Terms asked to come as before (for derivatives by differences) come exactly so: every point from the nodes where
+// they did, every wavelength solved where not, the same numbers at the same directions.
+TEST(ConoscopeTerms, TermsAsBeforeTakeTheSameWay) {
+    const Mineral& mineral = testing::repository_minerals().find("calcite");
+    ConoscopeSettings settings = testing::figure_settings(mineral, Cut::optic_axis, 10000.0, 64);
+    settings.wavelengths_nm = WavelengthGrid{380.0, 780.0, 5.0}.wavelengths_nm();
+    const PrincipalIndexFunction indices = testing::indices_of(mineral);
+    std::vector<Eigen::Vector2d> xis;
+    for (int k = 0; k <= 40; ++k) xis.emplace_back(-0.8 + 0.04 * k, 0.0);
+    const ConoscopeTerms terms(settings, indices);
+    std::vector<InterferenceTerms> first, again, solved;
+    std::vector<unsigned char> paths, none(xis.size(), 0);
+    terms.evaluate(xis, first, &paths);
+    ASSERT_GT(std::count(paths.begin(), paths.end(), 1), 0);
+    ASSERT_GT(std::count(paths.begin(), paths.end(), 0), 0) << "the optic axis and the finest rings are solved at every wavelength";
+    terms.evaluate(xis, again, nullptr, &paths);
+    ConoscopeSettings every_wavelength = settings;
+    every_wavelength.spectrum = SpectrumSampling::exact;
+    ConoscopeTerms(every_wavelength, indices).evaluate(xis, solved);
+    std::vector<InterferenceTerms> forced_exact;
+    terms.evaluate(xis, forced_exact, nullptr, &none);
+    for (std::size_t i = 0; i < first.size(); ++i) {
+        EXPECT_EQ(first[i].transmission(10000.0), again[i].transmission(10000.0)) << i;
+        EXPECT_EQ(forced_exact[i].transmission(10000.0), solved[i].transmission(10000.0)) << i;
+    }
+}
 
 TEST(ConoscopeTerms, RefuseAPlate) {
     const Mineral& mineral = testing::repository_minerals().find("calcite");

@@ -71,7 +71,9 @@ enum class IlluminationProfile { even, falloff };
 
 /// Everything about the figure that is not fitted.
 struct ConoscopePhotoModel {
-    /// NA, polars, stage, surrounding medium, wavelengths (crystal_axes and thickness_um are not used).
+    /// NA, polars, stage, surrounding medium, wavelengths (crystal_axes is not used), and whether white light is
+    /// interpolated from spectral nodes (spectrum). thickness_um: at least the thickest slab the model is evaluated
+    /// for (ConoscopeTerms; the model takes the larger of it and the thickness evaluated; the fit, its bound).
     ConoscopeSettings settings;
     PrincipalIndexFunction principal_n;
     /// The indicatrix axes for a tilt and azimuth (e.g. cut_orientation for the photo's cut).

@@ -96,15 +96,23 @@ namespace detail {
 class ConoscopeEvaluator;
 }
 
-/// The terms of many image points at every wavelength of a figure's settings (settings.thickness_um is
-/// not used; a plate or a mounting is refused with InputError).
+/// The terms of many image points at every wavelength of a figure's settings (a plate or a mounting is refused
+/// with InputError). In white light with settings.spectrum interpolated, an inactive crystal's terms come from the
+/// modes at the spectral nodes where they are smooth enough (as the figure's spectra do: docs/theory.md, "White light
+/// from spectral nodes"), every wavelength solved elsewhere; settings.thickness_um is then the thickest slab the terms
+/// are meant for: the phase's interpolation error is held to 1e-3 rad at that thickness.
 class ConoscopeTerms {
 public:
     ConoscopeTerms(const ConoscopeSettings& settings, const PrincipalIndexFunction& principal_n);
     ~ConoscopeTerms();
     std::size_t wavelength_count() const { return wavelength_count_; }
-    /// out[k·W + w] for xis[k] and wavelength w, on all threads (neighbouring ξ in order are faster).
-    void evaluate(const std::vector<Eigen::Vector2d>& xis, std::vector<InterferenceTerms>& out) const;
+    /// out[k·W + w] for xis[k] and wavelength w, on all threads (neighbouring ξ in order are faster). `from_nodes`
+    /// (where given) gets 1 for each point whose terms came from the spectral nodes, 0 for one solved at every
+    /// wavelength. `as_before` (where given) makes each point take the way it took in an earlier call (1: from the
+    /// nodes, without the error checks, unless its modes there fail; 0: every wavelength), so that the terms of nearby
+    /// directions, differenced for a derivative, come the same way.
+    void evaluate(const std::vector<Eigen::Vector2d>& xis, std::vector<InterferenceTerms>& out, std::vector<unsigned char>* from_nodes = nullptr,
+                  const std::vector<unsigned char>* as_before = nullptr) const;
 
 private:
     ConoscopeSettings settings_;
