@@ -691,6 +691,15 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
 
     const std::unique_ptr<ceres::Problem> final_problem = make_problem(*fine, result.values, options, bounds);
     uncertainties(*final_problem, cost, *fine, result, options);
+    // A thickness left on the box's bound (half the searched range's start, twice its end) is not at a minimum of the
+    // cost, which would go on past it: the photo does not determine it there, whatever the covariance says.
+    const std::size_t thickness_index = index_of(PhotoParameter::thickness_um);
+    if (thickness_free && (fitted_um <= bounds.lower[thickness_index] * (1.0 + kOnBound) || fitted_um >= bounds.upper[thickness_index] * (1.0 - kOnBound))) {
+        result.parameters[thickness_index].identifiable = false;
+        result.parameters[thickness_index].sigma.reset();
+        result.warnings.push_back("the thickness ended on the bound of the fit, " + format_significant(fitted_um, 6) +
+                                  " um, not at a minimum: the photo does not determine it (a figure blurred or cut away?)");
+    }
     const Statistics statistics = residual_statistics(*fine, cost, result.values);
     result.rms_residual = statistics.rms;
     result.explained_variance = statistics.explained_variance;

@@ -15,7 +15,6 @@
 
 namespace petroscope::detail {
 
-
 /// A point's transmission behind an accessory plate that is diag(μ₁, μ₂) on its two axes (plate_terms.hpp), with
 /// e^{iΓ} = μ̄₁μ₂/|μ₁μ₂| and θ = δ (inactive) or 2Ω (optically active):
 /// I = S + X cos θ + Y sin θ + cos Γ·(T_r + U_r cos θ + V_r sin θ) − sin Γ·(T_i + U_i cos θ + V_i sin θ), where θ

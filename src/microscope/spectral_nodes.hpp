@@ -132,8 +132,8 @@ inline ActiveSums active_sums(const std::array<NodeValues, 4>& component, std::s
 /// left to the spectrum.
 inline constexpr double kLeastRotation_rad = 1e-6;
 
-/// An optically active crystal's terms (active_node_terms) and a plate's (NodeColour::plate_xyz) are interpolated where θ
-/// is within kPhaseTolerance_rad, as δ elsewhere (spectral_nodes.hpp), and each term within 1e-4 of the transmission.
+/// The terms of a transmission S + X cos θ + Y sin θ (RotationNodeTerms, and a plate's: NodeColour::plate_xyz) are
+/// interpolated where θ is within kPhaseTolerance_rad, as δ is, and each term within 1e-4 of the transmission.
 inline constexpr double kTermTolerance = 1e-4;
 
 /// A point's transmission S + X cos θ + Y sin θ at the nodes, with θ = 2Ω (an optically active crystal) or θ = δ and
