@@ -33,6 +33,19 @@ SideFrame side_frame(const KernelScratch& scratch, int side) {
     return {rho_x, rho_y, -rho_y, rho_x};
 }
 
+// One side's node quantities as the kernel left them (KernelOutput::fields): the mode fields and δ, and with optical
+// activity (`active`) the coupled fields and b₀b₁.
+void copy_side_nodes(const KernelScratch& scratch, int side, bool active, std::array<NodeValues, 4>& fields, NodeValues& phase,
+                     std::array<NodeValues, 4>& coupled, NodeValues& product) {
+    for (std::size_t j = 0; j < kSpectralNodes; ++j) {
+        for (std::size_t c = 0; c < 4; ++c) fields[c][j] = scratch.mode_field[side][c][j];
+        phase[j] = scratch.phase_difference[side][j];
+        if (!active) continue;
+        for (std::size_t c = 0; c < 4; ++c) coupled[c][j] = scratch.coupled_field[side][c][j];
+        product[j] = scratch.coupling_product[side][j];
+    }
+}
+
 // One component of an active crystal's node fields, w_s·(s part) + w_p·(p part): F₀, F₁, G₀, G₁
 // (spectral_nodes.hpp, ActiveNodeFields) from mode_field (s fast, s slow, p fast, p slow) and coupled_field.
 std::array<NodeValues, 4> projected_active_fields(const std::array<NodeValues, 4>& fields, const std::array<NodeValues, 4>& coupled, double w_s,
@@ -88,13 +101,7 @@ bool ConoscopeEvaluator::interpolated_pair(const KernelScratch& scratch, double*
     std::array<NodeValues, 2> side_phase, side_product;
     const bool active = !gyration_lab_.empty();
     for (int side = 0; side < 2; ++side) {
-        for (std::size_t j = 0; j < kSpectralNodes; ++j) {
-            for (std::size_t c = 0; c < 4; ++c) side_fields[side][c][j] = scratch.mode_field[side][c][j];
-            side_phase[side][j] = scratch.phase_difference[side][j];
-            if (!active) continue;
-            for (std::size_t c = 0; c < 4; ++c) side_coupled[side][c][j] = scratch.coupled_field[side][c][j];
-            side_product[side][j] = scratch.coupling_product[side][j];
-        }
+        copy_side_nodes(scratch, side, active, side_fields[side], side_phase[side], side_coupled[side], side_product[side]);
         if (!(nodes_->tail(side_phase[side]) <= kPhaseTolerance_rad)) return false;
     }
     // The interpolated spectrum, and the colour of an inactive crystal without a plate (quadratic forms in the fields),
@@ -145,17 +152,9 @@ bool ConoscopeEvaluator::interpolated_pair(const KernelScratch& scratch, double*
 std::optional<RotationNodeTerms> ConoscopeEvaluator::node_rotation_terms(const KernelScratch& scratch) const {
     std::array<NodeValues, 4> fields, coupled;
     NodeValues phase, product;
-    for (std::size_t j = 0; j < kSpectralNodes; ++j) {
-        for (std::size_t c = 0; c < 4; ++c) fields[c][j] = scratch.mode_field[0][c][j];
-        phase[j] = scratch.phase_difference[0][j];
-    }
-    if (!gyration_lab_.empty()) {
-        for (std::size_t j = 0; j < kSpectralNodes; ++j) {
-            for (std::size_t c = 0; c < 4; ++c) coupled[c][j] = scratch.coupled_field[0][c][j];
-            product[j] = scratch.coupling_product[0][j];
-        }
-        return active_node_terms(active_node_fields(scratch, 0, fields, coupled, product), phase);
-    }
+    const bool active = !gyration_lab_.empty();
+    copy_side_nodes(scratch, 0, active, fields, phase, coupled, product);
+    if (active) return active_node_terms(active_node_fields(scratch, 0, fields, coupled, product), phase);
     // |c₀e^{iφ₀} + c₁e^{iφ₁}|² = c₀² + c₁² + 2c₀c₁·cos δ for each analyzed pair (interference.hpp, pair_terms).
     int pairs = 1;
     const std::array<NodeValues, 4> amplitudes = analyzed_node_amplitudes(scratch, 0, fields, pairs);

@@ -64,8 +64,8 @@ inline float combined(const PartSums& sums, float plate_cosine, float plate_minu
     return sum;
 }
 
-// One or two amplitudes (`first`, `second`; `out`) at the grid wavelengths begin … begin + length − 1, each from the parts in First
-// and Second (a superset of those it has: the others are zero): every node quantity is interpolated in the same pass,
+// One or two amplitudes (`first_parts`, `second_parts`; `out`) at the grid wavelengths begin … begin + length − 1, each from
+// the parts in First and Second (a superset of those it has: the others are zero): every node quantity is interpolated in the same pass,
 // each basis value loaded once for all, and r and q weighted with the plate's cos Γ and −sin Γ (`plate_cosine`,
 // `plate_minus_sine`).
 template <unsigned First, unsigned Second>
