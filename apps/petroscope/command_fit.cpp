@@ -43,6 +43,8 @@ const std::map<std::string, std::vector<PhotoParameter>>& free_groups() {
         {"distortion", {PhotoParameter::distortion}},
         {"analyzer", {PhotoParameter::analyzer_offset_deg}},
         {"extinction", {PhotoParameter::extinction_ratio}},
+        {"colour-matrix", {PhotoParameter::crosstalk_rg, PhotoParameter::crosstalk_rb, PhotoParameter::crosstalk_gr,
+                           PhotoParameter::crosstalk_gb, PhotoParameter::crosstalk_br, PhotoParameter::crosstalk_bg}},
     };
     return groups;
 }
@@ -265,8 +267,9 @@ void add_fit_command(CLI::App& app, const std::string& minerals_dir) {
     conoscope->add_option("--thickness", options->thickness, "Starting thickness with unit; searches thickness/3 … 3·thickness")->type_name(length_type);
     conoscope->add_option("--thickness-range", options->thickness_range, "The global search range, MIN:MAX with units (default 5um:5mm)");
     conoscope->add_option("--free", options->free, "Parameters to fit, comma-separated groups: thickness, center, scale, rotation, tilt,\n"
-                                                   "white-balance, black, gamma, blur, distortion, analyzer, extinction (and envelope,\n"
-                                                   "freed by --illumination falloff)")->capture_default_str();
+                                                   "white-balance, black, gamma, blur, distortion, analyzer, extinction, colour-matrix (the\n"
+                                                   "camera's crosstalk between colours: free it for a camera's photo); envelope is freed by\n"
+                                                   "--illumination falloff")->capture_default_str();
     conoscope->add_option("--projection", options->projection,
                           "How directions map to the photo: sine (microscope objective), tangent (camera or lens looking through\n"
                           "the crystal, figure on a screen), equidistant")->capture_default_str();

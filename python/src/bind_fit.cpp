@@ -275,7 +275,8 @@ mineral, cut, light, numerical_aperture, polarizer_deg, analyzer_deg, surround_n
   thickness_range_um: (min, max) to search instead. tilt_deg, azimuth_deg: the cut's starting tilt.
 free: the parameters fitted, by name (thickness_um, center_x_px, center_y_px, field_radius_px,
   rotation_deg, tilt_deg, azimuth_deg, gain_r, gain_g, gain_b, black_level, gamma, blur_variance_px2,
-  distortion, analyzer_offset_deg, extinction_ratio; envelope_center_x_px, envelope_center_y_px,
+  distortion, analyzer_offset_deg, extinction_ratio, crosstalk_rg, crosstalk_rb, crosstalk_gr, crosstalk_gb,
+  crosstalk_br, crosstalk_bg (the camera's colour matrix); envelope_center_x_px, envelope_center_y_px,
   envelope_radius_px, envelope_power are freed by illumination='falloff'); fixed: {name: value} held at a
   value. candidates: thickness minima refined. handedness: 'right' or 'left', the form of an optically
   active mineral (quartz).

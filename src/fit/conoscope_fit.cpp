@@ -5,6 +5,7 @@
 #include "photo_cost.hpp"
 #include "photo_model.hpp"
 #include "solver_messages.hpp"
+#include "stop_out_of_reach.hpp"
 
 #include "petroscope/core/error.hpp"
 #include "petroscope/core/text.hpp"
@@ -31,14 +32,15 @@ constexpr std::array<std::string_view, kPhotoParameterCount> kNames{
     "thickness_um", "center_x_px", "center_y_px", "field_radius_px", "rotation_deg", "tilt_deg", "azimuth_deg",
     "gain_r",       "gain_g",      "gain_b",      "black_level",     "gamma",        "blur_variance_px2",
     "envelope_center_x_px", "envelope_center_y_px", "envelope_radius_px", "envelope_power", "distortion", "analyzer_offset_deg",
-    "extinction_ratio"};
+    "extinction_ratio", "crosstalk_rg", "crosstalk_rb", "crosstalk_gr", "crosstalk_gb", "crosstalk_br", "crosstalk_bg"};
 
 constexpr std::size_t index_of(PhotoParameter p) { return static_cast<std::size_t>(p); }
 
 // A 1σ beyond these says the photo does not determine the parameter (in its own unit; thickness and
 // envelope radius relative; the centres and the field radius: uncertainties() sets theirs).
 constexpr std::array<double, kPhotoParameterCount> kUnidentifiedSigma{0.2, 0.0, 0.0, 0.0, 20.0, 20.0, 45.0, 0.5, 0.5, 0.5,
-                                                                      0.2, 1.0, 25.0, 0.0, 0.0, 0.5, 10.0, 0.2, 10.0, 0.05};
+                                                                      0.2, 1.0, 25.0, 0.0, 0.0, 0.5, 10.0, 0.2, 10.0, 0.05,
+                                                                      0.2, 0.2, 0.2, 0.2, 0.2, 0.2};
 
 /// The photo as three channels of camera values; InputError for what cannot be fitted.
 Image colour_photo(const Image& photo, bool white_light) {
@@ -129,10 +131,12 @@ std::unique_ptr<ceres::Problem> make_problem(const PhotoLevel& level, PhotoParam
     return problem;
 }
 
-/// Least squares on one level from `values`; returns the final Ceres cost and adds the iterations. Throws
+/// Least squares on one level from `values`; returns the final Ceres cost and adds the iterations. A solve that
+/// competes with others stops once it cannot reach `lowest_cost`, the lowest of theirs (StopOutOfReach). Throws
 /// Cancelled when the progress callback asks to stop.
 double solve_level(const PhotoLevel& level, PhotoParameters& values, const ConoscopeFitOptions& options, const Bounds& bounds,
-                   int max_iterations, double function_tolerance, int& iterations, ProgressRelay& relay) {
+                   int max_iterations, double function_tolerance, int& iterations, ProgressRelay& relay,
+                   double lowest_cost = std::numeric_limits<double>::infinity()) {
     const std::unique_ptr<ceres::Problem> problem = make_problem(level, values, options, bounds);
     ceres::Solver::Options solver;
     solver.linear_solver_type = ceres::DENSE_QR;
@@ -148,6 +152,8 @@ double solve_level(const PhotoLevel& level, PhotoParameters& values, const Conos
     solver.line_search_interpolation_type = ceres::QUADRATIC;
     CancelBetweenIterations cancel(relay);
     solver.callbacks.push_back(&cancel);
+    StopOutOfReach out_of_reach(lowest_cost, max_iterations);
+    if (std::isfinite(lowest_cost)) solver.callbacks.push_back(&out_of_reach);
     ceres::Solver::Summary summary;
     ceres::Solve(solver, problem.get(), &summary);
     relay.stop_if_cancelled();
@@ -156,6 +162,11 @@ double solve_level(const PhotoLevel& level, PhotoParameters& values, const Conos
     // they were and ranks last.
     return summary.IsSolutionUsable() ? summary.final_cost : std::numeric_limits<double>::infinity();
 }
+
+/// The relative decrease of the cost below which a final refinement stops: a hundredth of what one standard
+/// deviation of a parameter is worth. At the minimum, with n residuals of variance s², the cost ½Σr² is about
+/// ½ns², and moving a parameter by 1σ raises it by ½s², a fraction 1/n of the cost.
+double converged_fraction(const PhotoLevel& level) { return std::max(1e-8, 0.01 / std::max(1, 3 * level.usable_count)); }
 
 /// A thickness within this relative distance of a bound counts as on it.
 constexpr double kOnBound = 1e-6;
@@ -167,7 +178,7 @@ constexpr double kOnBound = 1e-6;
 double refine_in_basin(const PhotoLevel& level, PhotoParameters& values, const ConoscopeFitOptions& options, const Bounds& outer, Bounds& basin,
                        int& iterations, ProgressRelay& relay) {
     const std::size_t k = index_of(PhotoParameter::thickness_um);
-    double cost = solve_level(level, values, options, basin, 40, 1e-8, iterations, relay);
+    double cost = solve_level(level, values, options, basin, 40, converged_fraction(level), iterations, relay);
     for (int side = 0; side < 2; ++side) {
         if (basin.lower[k] > outer.lower[k] && values[k] <= basin.lower[k] * (1.0 + kOnBound)) {
             basin.lower[k] = outer.lower[k];
@@ -176,7 +187,7 @@ double refine_in_basin(const PhotoLevel& level, PhotoParameters& values, const C
         } else {
             break;
         }
-        cost = solve_level(level, values, options, basin, 40, 1e-8, iterations, relay);
+        cost = solve_level(level, values, options, basin, 40, converged_fraction(level), iterations, relay);
     }
     return cost;
 }
@@ -598,13 +609,15 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
                          StepRule::finest_resolved_fringe);
     reached(0.15);
 
-    // The small corrections of the optics (distortion, the analyzer's offset and leak) are fitted on the full
-    // photo only: on the blurred levels, far from the fit, they only add ways to wander (a calcite figure
-    // through an equidistant lens went to the distortion's bound, past its fold, and to 870 µm for 150).
+    // The small corrections of the optics (distortion, the analyzer's offset and leak) and of the camera's
+    // colours (its colour matrix) are fitted on the full photo only: on the blurred levels, far from the fit,
+    // they only add ways to wander (a calcite figure through an equidistant lens went to the distortion's
+    // bound, past its fold, and to 870 µm for 150).
     ConoscopeFitOptions polars_held = options;
     for (const PhotoParameter p : {PhotoParameter::distortion, PhotoParameter::analyzer_offset_deg, PhotoParameter::extinction_ratio}) {
         polars_held.free[index_of(p)] = false;
     }
+    for (std::size_t k = index_of(PhotoParameter::crosstalk_rg); k <= index_of(PhotoParameter::crosstalk_bg); ++k) polars_held.free[k] = false;
     // Every minimum is refined on the coarse level, for the geometry and the camera. Its thickness is not
     // held in the basin: at a wrong starting geometry the search's minima need not be the photo's.
     PhotoParameters geometry = start;
@@ -612,7 +625,7 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
     for (std::size_t k = 0; k < starts.size(); ++k) {
         PhotoParameters values = start;
         at(values, PhotoParameter::thickness_um) = starts[k].thickness_um;
-        const double cost = solve_level(*coarse, values, polars_held, bounds, 30, 1e-6, result.iterations, relay);
+        const double cost = solve_level(*coarse, values, polars_held, bounds, 30, 1e-6, result.iterations, relay, geometry_cost);
         if (cost < geometry_cost) {
             geometry_cost = cost;
             geometry = values;
@@ -636,8 +649,10 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
     for (std::size_t k = 0; k < minima.size(); ++k) {
         PhotoParameters values = geometry;
         at(values, PhotoParameter::thickness_um) = minima[k].thickness_um;
-        const double cost = solve_level(*scan, values, geometry_held, basin_bounds(minima[k]), 20, 1e-6, result.iterations, relay) /
-                            std::max(1, 3 * scan->usable_count);
+        const double residual_count = std::max(1, 3 * scan->usable_count);
+        const double cost = solve_level(*scan, values, geometry_held, basin_bounds(minima[k]), 20, 1e-6, result.iterations, relay,
+                                        best_scan_cost * residual_count) /
+                            residual_count;
         result.candidates.push_back({minima[k].thickness_um, at(values, PhotoParameter::thickness_um), cost});
         if (cost < best_scan_cost) {
             best_scan_cost = cost;
@@ -682,7 +697,7 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
         const detail::PhotoLevel encoded_level(terms_model, fine->evaluator.lattice(), encoded, 0.0,
                                                at(start, PhotoParameter::gamma), options.saturated_level);
         PhotoParameters refitted = result.values;
-        solve_level(encoded_level, refitted, options, final_bounds, 40, 1e-8, result.iterations, relay);
+        solve_level(encoded_level, refitted, options, final_bounds, 40, converged_fraction(encoded_level), result.iterations, relay);
         PhotoParameters shift{};
         for (std::size_t k = 0; k < shift.size(); ++k) shift[k] = refitted[k] - result.values[k];
         result.encoding_shift = shift;

@@ -13,6 +13,7 @@ constexpr int kGamma = static_cast<int>(PhotoParameter::gamma);
 constexpr int kBlur = static_cast<int>(PhotoParameter::blur_variance_px2);
 constexpr int kExtinction = static_cast<int>(PhotoParameter::extinction_ratio);
 constexpr int kEnvelopeX = static_cast<int>(PhotoParameter::envelope_center_x_px);
+constexpr int kCrosstalk = static_cast<int>(PhotoParameter::crosstalk_rg);
 // The parameters whose derivative is taken by evaluating the figure's terms again; with those that act
 // through ξ (kDirectionParameters), every parameter that changes the terms: the cache's key.
 constexpr std::array<PhotoParameter, 3> kReevaluatedParameters{PhotoParameter::tilt_deg, PhotoParameter::azimuth_deg,
@@ -223,8 +224,10 @@ bool PhotoCost::Evaluate(double const* const* parameters, double* residuals, dou
     }
     const std::size_t samples = level_.evaluator.sample_count();
     const double c2 = robust_scale_ * robust_scale_;
+    const Eigen::Matrix3d colours = colour_matrix(values);
 
     for (std::size_t k = 0; k < samples; ++k) {
+        const Eigen::Vector3d mixed = colours * base.rgb[k];
         for (int c = 0; c < 3; ++c) {
             const std::size_t row = 3 * k + static_cast<std::size_t>(c);
             double* jacobian_row = want_jacobian ? jacobians[0] + row * kPhotoParameterCount : nullptr;
@@ -233,7 +236,7 @@ bool PhotoCost::Evaluate(double const* const* parameters, double* residuals, dou
                 if (jacobian_row != nullptr) std::fill_n(jacobian_row, kPhotoParameterCount, 0.0);
                 continue;
             }
-            const CameraValue camera = camera_value(base.rgb[k][c], values[kGainR + c], values[kBlack], values[kGamma]);
+            const CameraValue camera = camera_value(mixed[c], values[kGainR + c], values[kBlack], values[kGamma]);
             const double r = camera.value - level_.observed[k][c];
             // Cauchy loss ρ(s) = c²·ln(1 + s/c²) written into the residual: r' = sign(r)·√ρ(r²), so Σr'² = Σρ.
             const double s = r * r;
@@ -243,7 +246,11 @@ bool PhotoCost::Evaluate(double const* const* parameters, double* residuals, dou
             const double chain = robust > 0.0 ? std::abs(r) / robust / (1.0 + s / c2) : 1.0;  // dr'/dr
             std::fill_n(jacobian_row, kPhotoParameterCount, 0.0);
             for (std::size_t j = 0; j < kPhotoParameterCount; ++j) {
-                if (!d_linear[j].empty()) jacobian_row[j] = chain * camera.d_linear * d_linear[j][k][c];
+                if (!d_linear[j].empty()) jacobian_row[j] = chain * camera.d_linear * colours.row(c).dot(d_linear[j][k]);
+            }
+            // Row c's crosstalk from the other two channels, in increasing order: ∂mixed_c/∂x_cc' = linear_c'.
+            for (int m = 0; m < 2; ++m) {
+                jacobian_row[kCrosstalk + 2 * c + m] = chain * camera.d_linear * base.rgb[k][m < c ? m : m + 1];
             }
             jacobian_row[kGainR + c] = chain * camera.d_gain;
             jacobian_row[kBlack] = chain;

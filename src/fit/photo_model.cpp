@@ -387,12 +387,25 @@ CameraValue camera_value(double linear, double gain, double black, double gamma)
     return {black + encoded, slope * gain, slope * linear, -encoded * std::log(exposed) / (gamma * gamma)};
 }
 
+Eigen::Matrix3d colour_matrix(const PhotoParameters& values) {
+    Eigen::Matrix3d matrix = Eigen::Matrix3d::Identity();
+    std::size_t k = static_cast<std::size_t>(PhotoParameter::crosstalk_rg);
+    for (int row = 0; row < 3; ++row) {
+        for (int column = 0; column < 3; ++column) {
+            if (row != column) matrix(row, column) = values[k++];
+        }
+    }
+    return matrix;
+}
+
 std::vector<Eigen::Vector3d> camera_values(const std::vector<Eigen::Vector3d>& linear_rgb, const PhotoParameters& values) {
     std::vector<Eigen::Vector3d> result(linear_rgb.size());
     const std::size_t gain = static_cast<std::size_t>(PhotoParameter::gain_r);
+    const Eigen::Matrix3d colours = colour_matrix(values);
     for (std::size_t k = 0; k < result.size(); ++k) {
+        const Eigen::Vector3d mixed = colours * linear_rgb[k];
         for (int c = 0; c < 3; ++c) {
-            result[k][c] = camera_value(linear_rgb[k][c], values[gain + static_cast<std::size_t>(c)], at(values, PhotoParameter::black_level),
+            result[k][c] = camera_value(mixed[c], values[gain + static_cast<std::size_t>(c)], at(values, PhotoParameter::black_level),
                                         at(values, PhotoParameter::gamma)).value;
         }
     }
@@ -431,9 +444,9 @@ PhotoBounds photo_parameter_bounds(double thickness_min_um, double thickness_max
     const double size = std::max(width_px, height_px);
     PhotoBounds b;
     b.lower = {0.5 * thickness_min_um, -size, -size, 0.05 * size, -360.0, -89.0, -720.0, 1e-3, 1e-3, 1e-3, -0.5, 0.5, 0.0,
-               -size, -size, 0.05 * size, 2.0, -0.3, -45.0, 0.0};
+               -size, -size, 0.05 * size, 2.0, -0.3, -45.0, 0.0, -0.5, -0.5, -0.5, -0.5, -0.5, -0.5};
     b.upper = {2.0 * thickness_max_um, 2.0 * size, 2.0 * size, 5.0 * size, 360.0, 89.0, 720.0, 1e3, 1e3, 1e3, 0.9, 5.0, 2500.0,
-               2.0 * size, 2.0 * size, 100.0 * size, 40.0, 0.3, 45.0, 0.2};
+               2.0 * size, 2.0 * size, 100.0 * size, 40.0, 0.3, 45.0, 0.2, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5};
     return b;
 }
 

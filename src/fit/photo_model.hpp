@@ -151,6 +151,10 @@ struct CameraValue {
 };
 CameraValue camera_value(double linear, double gain, double black, double gamma);
 
+/// The camera's colour matrix: ones on the diagonal (the gains scale each row), the crosstalk_* parameters off it
+/// in the order rg, rb, gr, gb, br, bg (row, column).
+Eigen::Matrix3d colour_matrix(const PhotoParameters& values);
+
 /// The camera values of linear sRGB samples for the camera parameters of `values`.
 std::vector<Eigen::Vector3d> camera_values(const std::vector<Eigen::Vector3d>& linear_rgb, const PhotoParameters& values);
 

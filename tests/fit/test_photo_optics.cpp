@@ -215,6 +215,8 @@ TEST(PhotoCost, JacobianMatchesCentralDifferencesWithEveryOpticsTermFree) {
     at(values, PhotoParameter::distortion) = 0.04;
     at(values, PhotoParameter::analyzer_offset_deg) = 3.0;
     at(values, PhotoParameter::extinction_ratio) = 0.01;
+    const std::array<double, 6> crosstalk{0.03, -0.02, 0.01, 0.04, -0.03, 0.02};
+    std::copy(crosstalk.begin(), crosstalk.end(), values.begin() + static_cast<std::ptrdiff_t>(index_of(PhotoParameter::crosstalk_rg)));
     // A linear camera: x^(1/γ) curves so sharply near black (the isogyres) that central differences of
     // the residuals there measure the curve, not the optics.
     at(values, PhotoParameter::gamma) = 1.0;
@@ -288,6 +290,8 @@ TEST_P(RealOpticsFitTest, ThicknessWithinTwoPercentAndTwoSigma) {
     for (const PhotoParameter fixed : {PhotoParameter::field_radius_px, PhotoParameter::tilt_deg, PhotoParameter::azimuth_deg}) {
         options.free[index_of(fixed)] = false;
     }
+    // The camera has no colour crosstalk (ConoscopeFit.CameraColourMatrixIsRecovered fits one).
+    for (std::size_t k = index_of(PhotoParameter::crosstalk_rg); k <= index_of(PhotoParameter::crosstalk_bg); ++k) options.free[k] = false;
     for (const PhotoParameter p : {PhotoParameter::distortion, PhotoParameter::analyzer_offset_deg, PhotoParameter::extinction_ratio}) {
         options.free[index_of(p)] = c.polars_and_distortion_free;
     }

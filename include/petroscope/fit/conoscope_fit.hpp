@@ -27,7 +27,8 @@ enum class PhotoParameter : int {
     rotation_deg,     // the image turned counter-clockwise against the lab (polarizers and stage)
     tilt_deg,         // the cut direction tilted away from the microscope axis (cut_orientation)
     azimuth_deg,      //   … toward this azimuth, from E toward N
-    gain_r,           // camera: value = black + (gain·linear sRGB)^(1/gamma), per channel
+    gain_r,           // camera: value = black + (gain·mixed)^(1/gamma), per channel, mixed = linear sRGB
+                      //   through the colour matrix (crosstalk_* below)
     gain_g,
     gain_b,
     black_level,
@@ -41,8 +42,14 @@ enum class PhotoParameter : int {
     distortion,            // radial distortion: the projection sees u·(1 + distortion·u²), u = r / field radius
     analyzer_offset_deg,   // the analyzer turned from its set direction (polars not exactly crossed)
     extinction_ratio,      // the fraction of the light vibrating across the analyzer that it lets through
+    crosstalk_rg,          // camera colour matrix: each channel's linear value gains these fractions of the
+    crosstalk_rb,          //   other two before its gain (crosstalk_rg: of green in red); a sensor's
+    crosstalk_gr,          //   colours are not the observer's, and its colour matrix maps them only
+    crosstalk_gb,          //   approximately
+    crosstalk_br,
+    crosstalk_bg,
 };
-constexpr int kPhotoParameterCount = 20;
+constexpr int kPhotoParameterCount = 26;
 using PhotoParameters = std::array<double, kPhotoParameterCount>;
 using PhotoParameterFlags = std::array<bool, kPhotoParameterCount>;
 
