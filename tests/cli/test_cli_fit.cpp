@@ -95,6 +95,9 @@ TEST_F(FitCli, BadPhotosAndOptionsAreRefused) {
     expect_rejected("fit conoscope --photo " + testing::quoted(photo) + tail + " --illumination falloff --fix envelope_radius_px=0",
                     {"envelope_radius_px = 0", "outside"});
     expect_rejected("fit conoscope --photo " + testing::quoted(photo) + tail + " --fix extinction_ratio=1.5", {"extinction_ratio = 1.5", "0 ... 0.2"});
+    expect_rejected("fit conoscope --photo " + testing::quoted(photo) + tail + " --fix crosstalk_bg=0.9", {"crosstalk_bg = 0.9", "-0.5 ... 0.5"});
+    expect_rejected("fit conoscope --photo " + testing::quoted(photo) + tail + " --free thickness,colour-matrx",
+                    {"--free", "'colour-matrx'", "colour-matrix"});
     expect_rejected("fit conoscope --photo " + testing::quoted(photo) + tail + " --free thickness,envelope",
                     {"--free", "envelope_center_x_px", "illumination is even", "falloff"});
     expect_rejected("fit conoscope --photo " + testing::quoted(photo) + " --mineral quartz --thickness-range 5mm:1mm -o " + testing::quoted(out()),

@@ -199,8 +199,9 @@ TEST(ConoscopeFit, EncodingCheckOfALosslessEncodingShiftsNothing) {
 
 // A camera whose colour matrix mixes the channels (its sensor's colours are not the observer's): the model's own
 // photo with crosstalk of up to 6%, noise σ = 2/255, the thickness starting 1.5 times off and the colour matrix at
-// the identity. The fit recovers the matrix (each term within 3σ) and the thickness (within 2σ); held at the
-// identity, the colour matrix the realistic-camera test bed's cameras have moved its thicknesses by up to 0.5%.
+// the identity. The fit recovers the matrix (each term within 3σ) and the thickness (within 2σ). (On the
+// realistic-camera test bed, taking the colour matrix and the look curve out of the photos moved the thicknesses
+// fitted with the matrix held by up to 0.5%: docs/fitting.md.)
 TEST(ConoscopeFit, CameraColourMatrixIsRecovered) {
     constexpr int kSize = 96;
     const ConoscopePhotoModel model = testing::photo_model(testing::fit_minerals().find("calcite"), Cut::optic_axis);
