@@ -33,6 +33,39 @@ Grid block_luminance(const Image& photo, int factor) {
     return grid;
 }
 
+// The grid divided by its local mean (a box of 2·radius + 1 blocks, applied twice: nearly a Gaussian; cut at the
+// grid's edges): light that falls off smoothly across the frame multiplies the camera values (E·F)^(1/γ) by a
+// smooth factor, which this removes, so that light centred away from the figure does not make another point look
+// like its centre of symmetry. The box's radius is this fraction of the grid's width (σ ≈ 0.1 of the frame):
+// wider than an isogyre, narrower than the light's falloff.
+constexpr int kLightRadiusFraction = 8;
+void divide_by_local_mean(Grid& grid, int radius) {
+    std::vector<double> mean = grid.values, ones(grid.values.size(), 1.0);
+    const auto box = [&grid, radius](std::vector<double>& values, bool along_x) {
+        std::vector<double> out(values.size(), 0.0);
+        for (int y = 0; y < grid.height; ++y) {
+            for (int x = 0; x < grid.width; ++x) {
+                double sum = 0.0;
+                for (int d = -radius; d <= radius; ++d) {
+                    const int xx = along_x ? x + d : x, yy = along_x ? y : y + d;
+                    if (xx >= 0 && yy >= 0 && xx < grid.width && yy < grid.height) sum += values[static_cast<std::size_t>(yy * grid.width + xx)];
+                }
+                out[static_cast<std::size_t>(y * grid.width + x)] = sum;
+            }
+        }
+        values.swap(out);
+    };
+    for (int pass = 0; pass < 2; ++pass) {
+        for (const bool along_x : {true, false}) {
+            box(mean, along_x);
+            box(ones, along_x);  // the weights the cut box had: its mean is sum / weight
+        }
+    }
+    double largest = 0.0;
+    for (std::size_t i = 0; i < mean.size(); ++i) largest = std::max(largest, mean[i] / ones[i]);
+    for (std::size_t i = 0; i < mean.size(); ++i) grid.values[i] /= std::max(mean[i] / ones[i], 1e-3 * largest);
+}
+
 // The overlap a centre needs, as a fraction of the frame: a figure a fifth of the frame off centre each way (the
 // most a fit is asked to find) overlaps its half turn on 0.6² = 36% of it. Smaller overlaps, strips along the
 // frame's edges, can be as symmetric about their own middle by chance as the figure is about its centre.
@@ -83,10 +116,12 @@ double pixel_coordinate(int s, int factor) { return (0.5 * s + 0.5) * factor; }
 
 std::optional<Eigen::Vector2d> half_turn_symmetry_centre_px(const Image& photo) {
     const int longest = std::max(photo.width, photo.height);
-    const Grid coarse = block_luminance(photo, std::max(1, (longest + 63) / 64));
+    Grid coarse = block_luminance(photo, std::max(1, (longest + 63) / 64));
+    divide_by_local_mean(coarse, std::max(1, coarse.width / kLightRadiusFraction));
     const Best rough = best_over(coarse, 0, 2 * coarse.width - 2, 0, 2 * coarse.height - 2);
     if (!std::isfinite(rough.correlation)) return std::nullopt;
-    const Grid fine = block_luminance(photo, std::max(1, (longest + 127) / 128));
+    Grid fine = block_luminance(photo, std::max(1, (longest + 127) / 128));
+    divide_by_local_mean(fine, std::max(1, fine.width / kLightRadiusFraction));
     // The rough centre on the fine grid, searched within two coarse blocks of it.
     const double ratio = static_cast<double>(coarse.factor) / fine.factor;
     const auto fine_index = [&](int s) { return static_cast<int>(std::lround(2.0 * pixel_coordinate(s, coarse.factor) / fine.factor - 1.0)); };

@@ -215,14 +215,15 @@ std::vector<Eigen::Vector2d> PhotoModelEvaluator::blur_shifts(const std::vector<
 
 namespace {
 
-/// The gradient (central differences; one-sided at the lattice's edge) and Laplacian (interior only) over
-/// the lattice of field(sample·W + w), per pixel.
+/// The gradient (central differences; one-sided at the lattice's edge) and, when asked for, the Laplacian
+/// (interior only) over the lattice of field(sample·W + w), per pixel.
 template <typename Field>
-void lattice_derivatives(const SampleLattice& lattice, std::size_t w_count, const Field& field, PhaseDerivatives& out) {
+void lattice_derivatives(const SampleLattice& lattice, std::size_t w_count, const Field& field, std::vector<double>& gradient_x,
+                         std::vector<double>& gradient_y, std::vector<double>* laplacian_out) {
     const std::size_t size = lattice.pixels.size() * w_count;  // every entry is written below
-    out.gradient_x.resize(size);
-    out.gradient_y.resize(size);
-    out.laplacian.resize(size);
+    gradient_x.resize(size);
+    gradient_y.resize(size);
+    if (laplacian_out != nullptr) laplacian_out->resize(size);
     const int samples = static_cast<int>(lattice.pixels.size());
     const double stride = lattice.stride_px;
 #pragma omp parallel for schedule(static)
@@ -243,23 +244,71 @@ void lattice_derivatives(const SampleLattice& lattice, std::size_t w_count, cons
                 laplacian += (high - 2.0 * centre + low) / (stride * stride);
             }
             const std::size_t i = static_cast<std::size_t>(k) * w_count + w;
-            out.gradient_x[i] = slopes[0];
-            out.gradient_y[i] = slopes[1];
-            out.laplacian[i] = interior ? laplacian : 0.0;
+            gradient_x[i] = slopes[0];
+            gradient_y[i] = slopes[1];
+            if (laplacian_out != nullptr) (*laplacian_out)[i] = interior ? laplacian : 0.0;
         }
     }
+}
+
+/// out[sample·W + w] = value(sample·W + w) at the lattice's interior samples (all four neighbours present), 0 at its
+/// edge (as the Laplacian).
+template <typename Value>
+void fill_interior(const SampleLattice& lattice, std::size_t w_count, const Value& value, std::vector<double>& out) {
+    out.resize(lattice.pixels.size() * w_count);
+    const int samples = static_cast<int>(lattice.pixels.size());
+#pragma omp parallel for schedule(static)
+    for (int sample = 0; sample < samples; ++sample) {
+        const auto k = static_cast<std::size_t>(sample);
+        const std::array<int, 4>& n = lattice.neighbours[k];
+        const bool inside = std::all_of(n.begin(), n.end(), [](int neighbour) { return neighbour >= 0; });
+        for (std::size_t i = k * w_count; i < (k + 1) * w_count; ++i) out[i] = inside ? value(i) : 0.0;
+    }
+}
+
+/// The gradient of |∇Φ|² over the lattice, from the phase's gradient, and the phase's curvature along its
+/// gradient ∇Φᵀ·HessΦ·∇Φ = ½∇Φ·∇|∇Φ|².
+void curvature_along_gradient(const SampleLattice& lattice, std::size_t w_count, PhaseDerivatives& phase) {
+    const auto squared_gradient = [&phase](std::size_t i) {
+        return phase.gradient_x[i] * phase.gradient_x[i] + phase.gradient_y[i] * phase.gradient_y[i];
+    };
+    lattice_derivatives(lattice, w_count, squared_gradient, phase.squared_gradient_x, phase.squared_gradient_y, nullptr);
+    const auto curvature = [&phase](std::size_t i) {
+        return 0.5 * (phase.gradient_x[i] * phase.squared_gradient_x[i] + phase.gradient_y[i] * phase.squared_gradient_y[i]);
+    };
+    fill_interior(lattice, w_count, curvature, phase.curvature_along_gradient);
+}
+
+/// The change of every PhaseDerivatives field when the phase changes by field(sample·W + w), to first order:
+/// the change's gradient and Laplacian, the change of ∇|∇Φ|² (from δ|∇Φ|² = 2∇Φ·∇δΦ) and that of the
+/// curvature along the gradient, ½∇δΦ·∇|∇Φ|² + ½∇Φ·∇δ|∇Φ|².
+template <typename Field>
+void phase_change_derivatives(const SampleLattice& lattice, std::size_t w_count, const PhaseDerivatives& phase, const Field& field,
+                              PhaseDerivatives& change) {
+    lattice_derivatives(lattice, w_count, field, change.gradient_x, change.gradient_y, &change.laplacian);
+    const auto squared_gradient_change = [&phase, &change](std::size_t i) {
+        return 2.0 * (phase.gradient_x[i] * change.gradient_x[i] + phase.gradient_y[i] * change.gradient_y[i]);
+    };
+    lattice_derivatives(lattice, w_count, squared_gradient_change, change.squared_gradient_x, change.squared_gradient_y, nullptr);
+    const auto curvature_change = [&phase, &change](std::size_t i) {
+        return 0.5 * (change.gradient_x[i] * phase.squared_gradient_x[i] + change.gradient_y[i] * phase.squared_gradient_y[i] +
+                      phase.gradient_x[i] * change.squared_gradient_x[i] + phase.gradient_y[i] * change.squared_gradient_y[i]);
+    };
+    fill_interior(lattice, w_count, curvature_change, change.curvature_along_gradient);
 }
 
 }  // namespace
 
 void PhotoModelEvaluator::phase_derivatives(const std::vector<InterferenceTerms>& terms, PhaseDerivatives& out) const {
-    lattice_derivatives(lattice_, wavelength_count(), [&terms](std::size_t i) { return terms[i].phase_per_um; }, out);
+    lattice_derivatives(lattice_, wavelength_count(), [&terms](std::size_t i) { return terms[i].phase_per_um; }, out.gradient_x,
+                        out.gradient_y, &out.laplacian);
+    curvature_along_gradient(lattice_, wavelength_count(), out);
 }
 
 void PhotoModelEvaluator::blur_response(const LinearSamples& linear, const PhaseDerivatives& phase, double thickness_um, double blur2_px2,
                                         const std::vector<Eigen::Vector2d>& shifts, const std::vector<double>& phase_change,
                                         PhaseDerivatives& change, std::vector<Eigen::Vector3d>& out) const {
-    lattice_derivatives(lattice_, wavelength_count(), [&phase_change](std::size_t i) { return phase_change[i]; }, change);
+    phase_change_derivatives(lattice_, wavelength_count(), phase, [&phase_change](std::size_t i) { return phase_change[i]; }, change);
     const std::size_t w_count = wavelength_count();
     const int samples = static_cast<int>(sample_count());
     const double d = thickness_um, d2 = thickness_um * thickness_um;
@@ -270,11 +319,12 @@ void PhotoModelEvaluator::blur_response(const LinearSamples& linear, const Phase
         const Eigen::Vector2d shift = shifts.empty() ? Eigen::Vector2d::Zero() : shifts[i];
         Eigen::Vector3d sum = Eigen::Vector3d::Zero();
         for (std::size_t w = 0, j = i * w_count; w < w_count; ++w, ++j) {
-            // T = mean + fringes(attenuation(∇Φ), phase(∇Φ, ∇²Φ)): ∂T/∂∇Φ = −σ²d²∇Φ·fringes + d·shift·∂fringes/∂phase,
-            // ∂T/∂∇²Φ = ½σ²d·∂fringes/∂phase.
+            // T = mean + fringes(attenuation(∇Φ), phase(∇Φ, ∇²Φ, q)) with q = ∇ΦᵀHessΦ∇Φ: ∂T/∂∇Φ = −σ²d²∇Φ·fringes +
+            // d·shift·∂fringes/∂phase, ∂T/∂∇²Φ = ½σ²d·∂fringes/∂phase, ∂T/∂q = −½σ⁴d³·∂fringes/∂phase.
             const double dgx = change.gradient_x[j], dgy = change.gradient_y[j];
+            const double rate_change = 0.5 * blur2_px2 * (change.laplacian[j] - blur2_px2 * d2 * change.curvature_along_gradient[j]);
             const double response = -blur2_px2 * d2 * (phase.gradient_x[j] * dgx + phase.gradient_y[j] * dgy) * linear.fringes[j] +
-                                    d * (0.5 * blur2_px2 * change.laplacian[j] + shift.x() * dgx + shift.y() * dgy) * linear.fringes_per_phase[j];
+                                    d * (rate_change + shift.x() * dgx + shift.y() * dgy) * linear.fringes_per_phase[j];
             sum += model_.rgb_per_transmission[w] * response;
         }
         out[i] = sum;
@@ -290,13 +340,18 @@ enum WavelengthColumn { kTransmission, kByThickness, kByBlur2, kByShiftX, kByShi
 using WavelengthTable = Eigen::Matrix<double, Eigen::Dynamic, kWavelengthColumns>;
 
 /// One sample's table at `thickness_um` and `blur2_px2` with the figure sampled `shift` px from the sample: per
-/// wavelength its interference terms and the phase's gradient and Laplacian per px (as many as the table's rows).
+/// wavelength its interference terms and the phase's derivatives over the photo, from entry `first` of each (as
+/// many as the table's rows).
 /// The loop has no branches or library calls, and its outputs (the table's columns) overlap none of its inputs:
 /// the compiler vectorises it. sine_cosine is exact to a few ulp for phases below 2¹⁹π (a slab of 300 mm of
 /// rutile in the violet) and loses only the phase's own rounding beyond.
-void fill_wavelength_table(const InterferenceTerms* terms, const double* gradient_x, const double* gradient_y, const double* laplacian,
-                           double thickness_um, double blur2_px2, const Eigen::Vector2d& shift, WavelengthTable& table) {
+void fill_wavelength_table(const InterferenceTerms* terms, const PhaseDerivatives& phase_derivatives, std::size_t first, double thickness_um,
+                           double blur2_px2, const Eigen::Vector2d& shift, WavelengthTable& table) {
     const double d = thickness_um, d2 = thickness_um * thickness_um, shift_x = shift.x(), shift_y = shift.y();
+    const double* gradient_x = phase_derivatives.gradient_x.data() + first;
+    const double* gradient_y = phase_derivatives.gradient_y.data() + first;
+    const double* laplacian = phase_derivatives.laplacian.data() + first;
+    const double* curvature = phase_derivatives.curvature_along_gradient.data() + first;
     double* transmission = table.col(kTransmission).data();
     double* by_thickness = table.col(kByThickness).data();
     double* by_blur2 = table.col(kByBlur2).data();
@@ -311,7 +366,9 @@ void fill_wavelength_table(const InterferenceTerms* terms, const double* gradien
         const double g2 = gx * gx + gy * gy;
         const double half_laplacian = 0.5 * laplacian[w];
         const double attenuation = exponential(-0.5 * blur2_px2 * d2 * g2);
-        const double rate = terms[w].phase_per_um + blur2_px2 * half_laplacian + gx * shift_x + gy * shift_y;  // ∂phase/∂d
+        // The blur's phase ½σ²∇²φ − ½σ⁴∇φᵀHessφ∇φ with φ = Φ·d (docs/fitting.md): the phase is (Φ + ½σ²∇²Φ + sigma4_rate)·d.
+        const double sigma4_rate_per_blur2 = -0.5 * blur2_px2 * d2 * curvature[w], sigma4_rate = blur2_px2 * sigma4_rate_per_blur2;
+        const double rate = terms[w].phase_per_um + blur2_px2 * half_laplacian + sigma4_rate + gx * shift_x + gy * shift_y;  // phase / d
         const SineCosine phase = sine_cosine(rate * d);
         // The cosine fringe and, for an optically active crystal, the sine one (InterferenceTerms).
         const double fringe = terms[w].modulation * attenuation, sine_fringe = terms[w].sine_modulation * attenuation;
@@ -319,9 +376,9 @@ void fill_wavelength_table(const InterferenceTerms* terms, const double* gradien
         const double per_phase = -fringe * phase.sine + sine_fringe * phase.cosine;  // ∂(fringes)/∂phase
         const double damping = blur2_px2 * d * g2;                                      // −∂(ln attenuation)/∂d
         transmission[w] = terms[w].mean + fringes;
-        by_thickness[w] = per_phase * rate - fringes * damping;
-        // ∂/∂blur² through the Laplacian's phase shift and the attenuation (the shifts' own part: the caller's).
-        by_blur2[w] = per_phase * half_laplacian * d - 0.5 * d2 * g2 * fringes;
+        by_thickness[w] = per_phase * (rate + 2.0 * sigma4_rate) - fringes * damping;  // sigma4_rate·d goes as d³
+        // ∂/∂blur² through the blur's phase and the attenuation (the shifts' own part: the caller's).
+        by_blur2[w] = per_phase * (half_laplacian + 2.0 * sigma4_rate_per_blur2) * d - 0.5 * d2 * g2 * fringes;
         by_shift_x[w] = per_phase * d * gx;
         by_shift_y[w] = per_phase * d * gy;
         fringes_out[w] = fringes;
@@ -359,8 +416,7 @@ void PhotoModelEvaluator::linear(const std::vector<InterferenceTerms>& terms, co
             const auto i = static_cast<std::size_t>(k);
             const std::size_t first = i * w_count;
             const Eigen::Vector2d shift = shifts.empty() ? Eigen::Vector2d::Zero() : shifts[i];
-            fill_wavelength_table(terms.data() + first, phase_derivatives.gradient_x.data() + first, phase_derivatives.gradient_y.data() + first,
-                                  phase_derivatives.laplacian.data() + first, thickness_um, blur2_px2, shift, table);
+            fill_wavelength_table(terms.data() + first, phase_derivatives, first, thickness_um, blur2_px2, shift, table);
             if (!derivatives) {
                 out.rgb[i] = weights.transpose() * table.col(kTransmission);
                 continue;

@@ -73,9 +73,11 @@ struct AnalyzerTerms {
 /// passed + extinction_ratio · blocked (passed alone when blocked is empty).
 void leaked_terms(const AnalyzerTerms& terms, double extinction_ratio, std::vector<InterferenceTerms>& out);
 
-/// [sample·W + w]: the phase's gradient (x right, y down) and Laplacian over the photo.
+/// [sample·W + w]: the phase's gradient (x right, y down) and Laplacian over the photo, the gradient of its
+/// squared gradient ∇|∇Φ|², and its curvature along the gradient ∇Φᵀ·HessΦ·∇Φ (for the blur's second-order phase).
 struct PhaseDerivatives {
     std::vector<double> gradient_x, gradient_y, laplacian;
+    std::vector<double> squared_gradient_x, squared_gradient_y, curvature_along_gradient;
 };
 
 /// Linear sRGB of every sample, and optionally its derivatives by thickness, by the blur's σ² and by the
@@ -114,20 +116,20 @@ public:
     /// Multiplies linear sRGB (and its derivatives, where computed) by the envelope.
     void illuminate(const std::vector<EnvelopeValue>& envelope, LinearSamples& samples) const;
 
-    /// The squared gradient |∇Φ|² (rad/µm/px)² and the Laplacian ∇²Φ (rad/µm/px²) of each phase over the
-    /// photo, from the lattice neighbours (central differences; one-sided, and no Laplacian, at the edge).
+    /// The phase's derivatives over the photo (PhaseDerivatives), from the lattice neighbours (central
+    /// differences; one-sided, and no Laplacian or curvature, at the edge).
     void phase_derivatives(const std::vector<InterferenceTerms>& terms, PhaseDerivatives& out) const;
 
     /// Linear sRGB at `thickness_um` with Gaussian blur of variance `blur2_px2`. The blur of a fringe
-    /// cos φ whose phase is locally quadratic is exp(−½σ²|∇φ|²)·cos(φ + ½σ²∇²φ) to first order in σ²
-    /// (docs/fitting.md), with φ = Φ·d. Each sample's figure is taken `shifts[k]` pixels away (empty: none),
+    /// cos φ whose phase is locally quadratic is exp(−½σ²|∇φ|²)·cos(φ + ½σ²∇²φ − ½σ⁴∇φᵀHessφ∇φ) to first
+    /// order in σ²·Hessφ, whatever σ²|∇φ|² (docs/fitting.md), with φ = Φ·d. Each sample's figure is taken `shifts[k]` pixels away (empty: none),
     /// through its phase's gradient: φ + d·∇Φ·shift (blur_shifts).
     void linear(const std::vector<InterferenceTerms>& terms, const PhaseDerivatives& phase, double thickness_um, double blur2_px2,
                 const std::vector<Eigen::Vector2d>& shifts, bool derivatives, LinearSamples& out) const;
 
     /// What a change `phase_change[sample·W + w]` of every phase does to the linear sRGB through the fringe
-    /// blur alone: the change of the phase's gradient and Laplacian over the photo (phase_derivatives'
-    /// stencil) times ∂(transmission)/∂ of each, summed over the wavelengths. A parameter that moves ξ by
+    /// blur alone: the change of the phase's gradient, Laplacian and curvature along the gradient over the
+    /// photo (phase_derivatives' stencils, linearised) times ∂(transmission)/∂ of each, summed over the wavelengths. A parameter that moves ξ by
     /// different amounts at different samples (the field radius, the rotation, the distortion, the centre of
     /// a projection other than the sine) changes them.
     /// `linear` holds the fringe terms of that thickness and blur (keep_fringe_terms).
