@@ -122,15 +122,15 @@ public:
 
     /// Linear sRGB at `thickness_um` with Gaussian blur of variance `blur2_px2`. The blur of a fringe
     /// cos φ whose phase is locally quadratic is exp(−½σ²|∇φ|²)·cos(φ + ½σ²∇²φ − ½σ⁴∇φᵀHessφ∇φ) to first
-    /// order in σ²·Hessφ, whatever σ²|∇φ|² (docs/fitting.md), with φ = Φ·d. Each sample's figure is taken `shifts[k]` pixels away (empty: none),
-    /// through its phase's gradient: φ + d·∇Φ·shift (blur_shifts).
+    /// order in σ²·Hessφ, whatever σ²|∇φ|² (docs/fitting.md), with φ = Φ·d. Each sample's figure is taken
+    /// `shifts[k]` pixels away (empty: none), through its phase's gradient: φ + d·∇Φ·shift (blur_shifts).
     void linear(const std::vector<InterferenceTerms>& terms, const PhaseDerivatives& phase, double thickness_um, double blur2_px2,
                 const std::vector<Eigen::Vector2d>& shifts, bool derivatives, LinearSamples& out) const;
 
     /// What a change `phase_change[sample·W + w]` of every phase does to the linear sRGB through the fringe
     /// blur alone: the change of the phase's gradient, Laplacian and curvature along the gradient over the
-    /// photo (phase_derivatives' stencils, linearised) times ∂(transmission)/∂ of each, summed over the wavelengths. A parameter that moves ξ by
-    /// different amounts at different samples (the field radius, the rotation, the distortion, the centre of
+    /// photo (phase_derivatives' stencils, linearised) times ∂(transmission)/∂ of each, summed over the
+    /// wavelengths. A parameter that moves ξ by different amounts at different samples (the field radius, the rotation, the distortion, the centre of
     /// a projection other than the sine) changes them.
     /// `linear` holds the fringe terms of that thickness and blur (keep_fringe_terms).
     /// `change` is room for the change's derivatives (its contents are overwritten).

@@ -41,10 +41,10 @@ TEST_P(FigureLocationTest, TheHalfTurnSymmetryCentreIsTheFiguresCentre) {
     EXPECT_LE((located - expected).norm(), 1.5);
 }
 
-// The realistic-camera bed's case 1 (docs/fitting.md): quartz 4.6 mm, whose rings are finer than the blur, 128² through
-// a tangent projection, the figure (7.8, 23.7) px off the frame's centre and the light falling off about another
-// centre, with a camera's vignetting, mosaic and JPEG. Before the light's falloff was divided out, the
-// brighter half of the frame made (35, 39.5) look the most symmetric point.
+// The realistic-camera bed's case 1 (docs/fitting.md): quartz 4.6 mm, whose rings are finer than the blur, 128²
+// through a tangent projection, the figure (7.8, 23.7) px off the frame's centre and the light falling off about
+// another centre, with a camera's vignetting, mosaic and JPEG. Before the light's falloff was divided out, the
+// brighter part of the frame made (35, 39.5) look the most symmetric point.
 TEST(FigureLocation, LightCentredAwayFromTheFigureDoesNotMoveItsCentre) {
     constexpr int kSize = 128, kCase = 1;
     const testing::CameraCase bed_case = testing::random_case(kCase, kSize);

@@ -366,9 +366,9 @@ INSTANTIATE_TEST_SUITE_P(
 // pixel, and a camera's pixels average them in a way the model's blur does not follow; through a tangent projection
 // the same photo came out −0.13%, 4σ); its 1σ, 0.015 µm, is 17 times smaller than the error because the encoding
 // check's refit barely moved (+0.002 µm; +0.053 with every wavelength solved). Calcite 150 µm through an
-// equidistant projection: −1.65%, 2.9σ (−0.585%, 8.4σ with the blur's σ⁴ phase): its encoding check's refit starts where the cost's gradient is large (max
-// norm 351, against 0.009 at the end of the fit on the photo itself) and every step is rejected, so the JPEG's part
-// of the 1σ depends on where the trust region collapses. docs/fitting.md, "Measured through real optics".
+// equidistant projection: −1.65%, 2.9σ (−0.585%, 8.4σ with the blur's σ⁴ phase): its encoding check's refit starts
+// where the cost's gradient is large (max norm 351, against 0.009 at the end of the fit on the photo itself) and every
+// step is rejected, so the JPEG's part of the 1σ depends on where the trust region collapses. docs/fitting.md, "Measured through real optics".
 INSTANTIATE_TEST_SUITE_P(
     DISABLED_KnownOpticsFailures, RealOpticsFitTest,
     ::testing::Values(
