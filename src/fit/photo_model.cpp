@@ -215,6 +215,11 @@ std::vector<Eigen::Vector2d> PhotoModelEvaluator::blur_shifts(const std::vector<
 
 namespace {
 
+/// Whether a lattice sample has all four neighbours (where the Laplacian and the curvature are taken).
+bool interior(const std::array<int, 4>& neighbours) {
+    return std::all_of(neighbours.begin(), neighbours.end(), [](int neighbour) { return neighbour >= 0; });
+}
+
 /// The gradient (central differences; one-sided at the lattice's edge) and, when asked for, the Laplacian
 /// (interior only) over the lattice of field(sample·W + w), per pixel.
 template <typename Field>
@@ -230,23 +235,22 @@ void lattice_derivatives(const SampleLattice& lattice, std::size_t w_count, cons
     for (int k = 0; k < samples; ++k) {
         const std::array<int, 4>& n = lattice.neighbours[static_cast<std::size_t>(k)];
         const auto value = [&](int sample, std::size_t w) { return field(static_cast<std::size_t>(sample) * w_count + w); };
+        const bool inside = interior(n);
         for (std::size_t w = 0; w < w_count; ++w) {
             const double centre = value(k, w);
             std::array<double, 2> slopes{};
             double laplacian = 0.0;
-            bool interior = true;
             for (int axis = 0; axis < 2; ++axis) {
                 const int minus = n[2 * axis], plus = n[2 * axis + 1];
                 const double low = minus >= 0 ? value(minus, w) : centre, high = plus >= 0 ? value(plus, w) : centre;
                 const int span = (minus >= 0 ? 1 : 0) + (plus >= 0 ? 1 : 0);
                 slopes[static_cast<std::size_t>(axis)] = span > 0 ? (high - low) / (span * stride) : 0.0;
-                interior = interior && span == 2;
                 laplacian += (high - 2.0 * centre + low) / (stride * stride);
             }
             const std::size_t i = static_cast<std::size_t>(k) * w_count + w;
             gradient_x[i] = slopes[0];
             gradient_y[i] = slopes[1];
-            if (laplacian_out != nullptr) (*laplacian_out)[i] = interior ? laplacian : 0.0;
+            if (laplacian_out != nullptr) (*laplacian_out)[i] = inside ? laplacian : 0.0;
         }
     }
 }
@@ -260,8 +264,7 @@ void fill_interior(const SampleLattice& lattice, std::size_t w_count, const Valu
 #pragma omp parallel for schedule(static)
     for (int sample = 0; sample < samples; ++sample) {
         const auto k = static_cast<std::size_t>(sample);
-        const std::array<int, 4>& n = lattice.neighbours[k];
-        const bool inside = std::all_of(n.begin(), n.end(), [](int neighbour) { return neighbour >= 0; });
+        const bool inside = interior(lattice.neighbours[k]);
         for (std::size_t i = k * w_count; i < (k + 1) * w_count; ++i) out[i] = inside ? value(i) : 0.0;
     }
 }

@@ -130,8 +130,8 @@ public:
     /// What a change `phase_change[sample·W + w]` of every phase does to the linear sRGB through the fringe
     /// blur alone: the change of the phase's gradient, Laplacian and curvature along the gradient over the
     /// photo (phase_derivatives' stencils, linearised) times ∂(transmission)/∂ of each, summed over the
-    /// wavelengths. A parameter that moves ξ by different amounts at different samples (the field radius, the rotation, the distortion, the centre of
-    /// a projection other than the sine) changes them.
+    /// wavelengths. A parameter that moves ξ by different amounts at different samples (the field radius, the
+    /// rotation, the distortion, the centre of a projection other than the sine) changes them.
     /// `linear` holds the fringe terms of that thickness and blur (keep_fringe_terms).
     /// `change` is room for the change's derivatives (its contents are overwritten).
     void blur_response(const LinearSamples& linear, const PhaseDerivatives& phase, double thickness_um, double blur2_px2,

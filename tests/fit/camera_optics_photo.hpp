@@ -132,18 +132,20 @@ inline Image photo_through_optics(const ConoscopePhotoModel& model, const PhotoL
                                 truth.jpeg_quality, seed, jpeg_file);
 }
 
-/// What the fit is told of a `size_px`² JPEG photo through real optics: `model` set to the photo's projection,
+/// What the fit is told of a `size_px`² photo through real optics: `model` set to the photo's projection,
 /// no field stop and the light falling off; options starting from the defaults with the known field radius
-/// and, as the CLI does, the encoding read from the file, repeated on the best fit for its systematic error.
-/// Which parameters are free is the caller's.
+/// and, for a JPEG photo (`jpeg_file` not empty), as the CLI does, the encoding read from the file, repeated on
+/// the best fit for its systematic error. Which parameters are free is the caller's.
 inline ConoscopeFitOptions real_optics_fit(ConoscopePhotoModel& model, const OpticsTruth& truth, const std::vector<std::uint8_t>& jpeg_file,
                                            int size_px) {
     model.projection = truth.projection;
     model.field_stop = FieldStop::none;
     model.illumination = IlluminationProfile::falloff;
     ConoscopeFitOptions options;
-    const JpegEncoding file_encoding = jpeg_encoding_of(jpeg_file, "photo.jpg").value();
-    options.photo_encoding = [file_encoding](const Image& image) { return encode_like_jpeg(image, file_encoding); };
+    if (!jpeg_file.empty()) {
+        const JpegEncoding file_encoding = jpeg_encoding_of(jpeg_file, "photo.jpg").value();
+        options.photo_encoding = [file_encoding](const Image& image) { return encode_like_jpeg(image, file_encoding); };
+    }
     options.initial = default_photo_parameters(size_px, size_px);
     at(options.initial, PhotoParameter::field_radius_px) = truth.field_radius_px;
     return options;

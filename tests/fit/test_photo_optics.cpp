@@ -390,12 +390,7 @@ TEST(ConoscopeFit, FineFringesUnderTwoPixelsOfBlurKeepTheirThickness) {
     static const testing::PhotoLight light = testing::white_light();
     ConoscopePhotoModel model = testing::photo_model(testing::fit_minerals().find(bed_case.mineral.mineral), bed_case.mineral.cut);
     const Image photo = testing::photo_through_optics(model, light, truth, 128, 7);
-    model.projection = truth.projection;
-    model.field_stop = FieldStop::none;
-    model.illumination = IlluminationProfile::falloff;
-    ConoscopeFitOptions options;
-    options.initial = default_photo_parameters(128, 128);
-    at(options.initial, PhotoParameter::field_radius_px) = truth.field_radius_px;
+    ConoscopeFitOptions options = testing::real_optics_fit(model, truth, {}, 128);  // no JPEG: no encoding check
     for (std::size_t k = 0; k <= index_of(PhotoParameter::envelope_power); ++k) options.free[k] = true;
     for (const PhotoParameter fixed : {PhotoParameter::field_radius_px, PhotoParameter::tilt_deg, PhotoParameter::azimuth_deg}) {
         options.free[index_of(fixed)] = false;
