@@ -3,7 +3,8 @@
 // (tests/fit/synthetic_photo.hpp: muscovite 300 µm, centre and scale off, camera turned, JPEG 85), with
 // and without the check of the JPEG encoding's systematic error. Then issue 18's speed goal: the realistic-camera
 // test bed's twenty cases (realistic_camera_case.hpp) at 512², thickness unknown (the default 5 µm – 5 mm
-// search), every nuisance free.
+// search), every nuisance free; and one evaluation of the fit's cost with its Jacobian, most of a refinement's work.
+#include "photo_cost.hpp"
 #include "realistic_camera_case.hpp"
 #include "synthetic_photo.hpp"
 
@@ -74,6 +75,35 @@ void FitRealisticCamera512(benchmark::State& state) {
     state.counters["error_percent"] = error_percent;
 }
 BENCHMARK(FitRealisticCamera512)->DenseRange(0, 19)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+
+/// One evaluation of the fit's cost with its Jacobian on the final level of a 512² photo (case 10 of the test bed, the
+/// lattice every 4th pixel as the fit's: 16384 samples, every term free that the bed frees), the geometry moved a
+/// little each time so that the figure's terms are computed anew, as in every iteration of a refinement.
+void PhotoCostJacobian512(benchmark::State& state) {
+    constexpr int kSize = 512, kCase = 10;
+    const testing::CameraCase c = testing::random_case(kCase, kSize);
+    const testing::CameraCasePhoto shot = testing::photograph_case(kCase, c, kSize);
+    ConoscopePhotoModel terms_model = shot.model;
+    terms_model.settings.thickness_um = 10000.0;  // as the fit: the thickest slab its bounds allow
+    PhotoParameters values = shot.options.initial;
+    at(values, PhotoParameter::thickness_um) = c.optics.thickness_um;
+    const Eigen::Vector2d centre(at(values, PhotoParameter::center_x_px), at(values, PhotoParameter::center_y_px));
+    const detail::PhotoLevel level(terms_model, detail::sample_lattice(centre, kSize, 4, kSize, kSize), shot.photo, 0.0,
+                                   at(values, PhotoParameter::gamma), shot.options.saturated_level);
+    const detail::PhotoCost cost(level, shot.options.free, shot.options.robust_scale);
+    std::vector<double> residuals(static_cast<std::size_t>(cost.num_residuals()));
+    std::vector<double> jacobian(residuals.size() * kPhotoParameterCount);
+    double* jacobians[] = {jacobian.data()};
+    int evaluation = 0;
+    for (auto _ : state) {
+        at(values, PhotoParameter::center_x_px) += (evaluation++ % 2 == 0 ? 1e-3 : -1e-3);
+        const double* parameters[] = {values.data()};
+        if (!cost.Evaluate(parameters, residuals.data(), jacobians)) state.SkipWithError("the cost refused the point");
+        benchmark::DoNotOptimize(jacobian.data());
+    }
+    state.counters["samples"] = static_cast<double>(level.evaluator.sample_count());
+}
+BENCHMARK(PhotoCostJacobian512)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 

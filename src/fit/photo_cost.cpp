@@ -112,32 +112,40 @@ void PhotoCost::direction_columns(const PhotoParameters& values, const std::vect
     LinearSamples& moved = scratch_.moved;
     std::array<std::vector<Eigen::Vector3d>, 2>& d_xi = scratch_.d_xi;
     std::array<std::vector<double>, 2>& d_phase_d_xi = scratch_.d_phase_d_xi;
-    std::vector<double>& phase_change = scratch_.phase_change;
+    std::vector<Eigen::Vector2d>& xi_change = scratch_.xi_change;
     std::vector<Eigen::Vector3d>& through_blur = scratch_.through_blur;
     for (std::size_t axis = 0; axis < 2; ++axis) {
         level_.evaluator.terms(values, shifted, kXiStep * (axis == 0 ? Eigen::Vector2d::UnitX() : Eigen::Vector2d::UnitY()),
                                &cached_terms_.from_nodes);
         level_.evaluator.linear(shifted, cached_phase_, values[kThickness], blur2, shifts, false, moved);
         d_xi[axis].resize(samples);
-        for (std::size_t k = 0; k < samples; ++k) d_xi[axis][k] = (moved.rgb[k] - unlit.rgb[k]) / kXiStep;
         d_phase_d_xi[axis].resize(seen.size());
-        for (std::size_t i = 0; i < seen.size(); ++i) d_phase_d_xi[axis][i] = (shifted[i].phase_per_um - seen[i].phase_per_um) / kXiStep;
+        // Each sample's entries alone, on every core (as every loop over the samples below).
+#pragma omp parallel for schedule(static)
+        for (int sample = 0; sample < static_cast<int>(samples); ++sample) {
+            const auto k = static_cast<std::size_t>(sample);
+            d_xi[axis][k] = (moved.rgb[k] - unlit.rgb[k]) / kXiStep;
+            for (std::size_t i = k * w_count; i < (k + 1) * w_count; ++i) {
+                d_phase_d_xi[axis][i] = (shifted[i].phase_per_um - seen[i].phase_per_um) / kXiStep;
+            }
+        }
     }
-    std::vector<std::array<Eigen::Vector2d, 5>> dxi(samples);
-    for (std::size_t k = 0; k < samples; ++k) dxi[k] = direction_derivatives(level_.evaluator.model(), values, level_.evaluator.lattice().pixels[k]);
-    phase_change.resize(seen.size());
+    std::vector<std::array<Eigen::Vector2d, 5>>& dxi = scratch_.d_xi_d_parameters;
+    dxi.resize(samples);
+#pragma omp parallel for schedule(static)
+    for (int sample = 0; sample < static_cast<int>(samples); ++sample) {
+        const auto k = static_cast<std::size_t>(sample);
+        dxi[k] = direction_derivatives(level_.evaluator.model(), values, level_.evaluator.lattice().pixels[k]);
+    }
+    xi_change.resize(samples);
     for (std::size_t j = 0; j < kDirectionParameters.size(); ++j) {
         if (!free_[static_cast<std::size_t>(kDirectionParameters[j])]) continue;
         std::vector<Eigen::Vector3d>& column = d_linear[static_cast<std::size_t>(kDirectionParameters[j])];
         column.resize(samples);
-        for (std::size_t k = 0; k < samples; ++k) {
-            column[k] = d_xi[0][k] * dxi[k][j].x() + d_xi[1][k] * dxi[k][j].y();
-            for (std::size_t i = k * w_count; i < (k + 1) * w_count; ++i) {
-                phase_change[i] = d_phase_d_xi[0][i] * dxi[k][j].x() + d_phase_d_xi[1][i] * dxi[k][j].y();
-            }
-        }
-        level_.evaluator.blur_response(unlit, cached_phase_, values[kThickness], blur2, shifts, phase_change, scratch_.change, through_blur);
-        for (std::size_t k = 0; k < samples; ++k) column[k] += through_blur[k];
+        for (std::size_t k = 0; k < samples; ++k) xi_change[k] = dxi[k][j];
+        level_.evaluator.blur_response(unlit, cached_phase_, values[kThickness], blur2, shifts, d_phase_d_xi, xi_change, scratch_.phase_change,
+                                       through_blur);
+        for (std::size_t k = 0; k < samples; ++k) column[k] = d_xi[0][k] * dxi[k][j].x() + d_xi[1][k] * dxi[k][j].y() + through_blur[k];
     }
 }
 
@@ -226,7 +234,9 @@ bool PhotoCost::Evaluate(double const* const* parameters, double* residuals, dou
     const double c2 = robust_scale_ * robust_scale_;
     const Eigen::Matrix3d colours = colour_matrix(values);
 
-    for (std::size_t k = 0; k < samples; ++k) {
+#pragma omp parallel for schedule(static)
+    for (int sample = 0; sample < static_cast<int>(samples); ++sample) {
+        const auto k = static_cast<std::size_t>(sample);
         const Eigen::Vector3d mixed = colours * base.rgb[k];
         for (int c = 0; c < 3; ++c) {
             const std::size_t row = 3 * k + static_cast<std::size_t>(c);

@@ -66,9 +66,11 @@ private:
         std::array<std::vector<Eigen::Vector3d>, kPhotoParameterCount> d_linear;
         std::array<std::vector<Eigen::Vector3d>, 2> d_xi;
         std::array<std::vector<double>, 2> d_phase_d_xi;
-        std::vector<double> phase_change;
+        std::vector<std::array<Eigen::Vector2d, 5>> d_xi_d_parameters;  // direction_derivatives at every sample
+        std::vector<Eigen::Vector2d> xi_change;  // one parameter's ∂ξ/∂p at every sample
+        PhaseChangeRoom phase_change;
         std::vector<Eigen::Vector3d> through_blur;
-        PhaseDerivatives moved_phase, change;
+        PhaseDerivatives moved_phase;
     };
     mutable std::mutex evaluation_mutex_;
     mutable Scratch scratch_;

@@ -193,7 +193,11 @@ void PhotoModelEvaluator::terms(const PhotoParameters& values, std::vector<Inter
 
 std::vector<EnvelopeValue> PhotoModelEvaluator::envelope(const PhotoParameters& values) const {
     std::vector<EnvelopeValue> result(sample_count());
-    for (std::size_t k = 0; k < result.size(); ++k) result[k] = illumination_envelope(model_, values, lattice_.pixels[k]);
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < static_cast<int>(result.size()); ++k) {
+        const auto i = static_cast<std::size_t>(k);
+        result[i] = illumination_envelope(model_, values, lattice_.pixels[i]);
+    }
     return result;
 }
 
@@ -220,6 +224,49 @@ bool interior(const std::array<int, 4>& neighbours) {
     return std::all_of(neighbours.begin(), neighbours.end(), [](int neighbour) { return neighbour >= 0; });
 }
 
+/// A lattice sample's central differences (one-sided at the lattice's edge, 0 where it has no neighbour on an
+/// axis) and five-point Laplacian, per pixel.
+struct Stencil {
+    double slope_x, slope_y, laplacian;
+};
+
+/// The stencil of a sample with all four neighbours, from its own value and theirs.
+inline Stencil interior_stencil(double centre, double left, double right, double up, double down, double stride) {
+    const double stride2 = stride * stride;
+    return {(right - left) / (2 * stride), (down - up) / (2 * stride), (right - 2.0 * centre + left) / stride2 + (down - 2.0 * centre + up) / stride2};
+}
+
+/// Calls visit(w, stencil) for every wavelength w of sample k, with the stencil over the lattice of value(sample, w).
+/// An interior sample takes a loop without branches, which the compiler vectorises.
+template <typename Value, typename Visit>
+void for_each_stencil(const SampleLattice& lattice, std::size_t k, std::size_t w_count, const Value& value, const Visit& visit) {
+    const std::array<int, 4>& n = lattice.neighbours[k];
+    const double stride = lattice.stride_px;
+    if (interior(n)) {
+        const std::size_t left = static_cast<std::size_t>(n[0]), right = static_cast<std::size_t>(n[1]);
+        const std::size_t up = static_cast<std::size_t>(n[2]), down = static_cast<std::size_t>(n[3]);
+#pragma GCC ivdep
+        for (std::size_t w = 0; w < w_count; ++w) {
+            visit(w, interior_stencil(value(k, w), value(left, w), value(right, w), value(up, w), value(down, w), stride));
+        }
+        return;
+    }
+    for (std::size_t w = 0; w < w_count; ++w) {
+        const double centre = value(k, w);
+        Stencil at{0.0, 0.0, 0.0};
+        double* slopes[] = {&at.slope_x, &at.slope_y};
+        for (std::size_t axis = 0; axis < 2; ++axis) {
+            const int minus = n[2 * axis], plus = n[2 * axis + 1];
+            const double low = minus >= 0 ? value(static_cast<std::size_t>(minus), w) : centre;
+            const double high = plus >= 0 ? value(static_cast<std::size_t>(plus), w) : centre;
+            const int span = (minus >= 0 ? 1 : 0) + (plus >= 0 ? 1 : 0);
+            *slopes[axis] = span > 0 ? (high - low) / (span * stride) : 0.0;
+            at.laplacian += (high - 2.0 * centre + low) / (stride * stride);  // used at interior samples only
+        }
+        visit(w, at);
+    }
+}
+
 /// The gradient (central differences; one-sided at the lattice's edge) and, when asked for, the Laplacian
 /// (interior only) over the lattice of field(sample·W + w), per pixel.
 template <typename Field>
@@ -229,29 +276,19 @@ void lattice_derivatives(const SampleLattice& lattice, std::size_t w_count, cons
     gradient_x.resize(size);
     gradient_y.resize(size);
     if (laplacian_out != nullptr) laplacian_out->resize(size);
+    double* laplacian = laplacian_out != nullptr ? laplacian_out->data() : nullptr;
     const int samples = static_cast<int>(lattice.pixels.size());
-    const double stride = lattice.stride_px;
 #pragma omp parallel for schedule(static)
-    for (int k = 0; k < samples; ++k) {
-        const std::array<int, 4>& n = lattice.neighbours[static_cast<std::size_t>(k)];
-        const auto value = [&](int sample, std::size_t w) { return field(static_cast<std::size_t>(sample) * w_count + w); };
-        const bool inside = interior(n);
-        for (std::size_t w = 0; w < w_count; ++w) {
-            const double centre = value(k, w);
-            std::array<double, 2> slopes{};
-            double laplacian = 0.0;
-            for (int axis = 0; axis < 2; ++axis) {
-                const int minus = n[2 * axis], plus = n[2 * axis + 1];
-                const double low = minus >= 0 ? value(minus, w) : centre, high = plus >= 0 ? value(plus, w) : centre;
-                const int span = (minus >= 0 ? 1 : 0) + (plus >= 0 ? 1 : 0);
-                slopes[static_cast<std::size_t>(axis)] = span > 0 ? (high - low) / (span * stride) : 0.0;
-                laplacian += (high - 2.0 * centre + low) / (stride * stride);
-            }
-            const std::size_t i = static_cast<std::size_t>(k) * w_count + w;
-            gradient_x[i] = slopes[0];
-            gradient_y[i] = slopes[1];
-            if (laplacian_out != nullptr) (*laplacian_out)[i] = inside ? laplacian : 0.0;
-        }
+    for (int sample = 0; sample < samples; ++sample) {
+        const auto k = static_cast<std::size_t>(sample);
+        const bool inside = interior(lattice.neighbours[k]);
+        const auto value = [&](std::size_t at, std::size_t w) { return field(at * w_count + w); };
+        for_each_stencil(lattice, k, w_count, value, [&](std::size_t w, const Stencil& at) {
+            const std::size_t i = k * w_count + w;
+            gradient_x[i] = at.slope_x;
+            gradient_y[i] = at.slope_y;
+            if (laplacian != nullptr) laplacian[i] = inside ? at.laplacian : 0.0;
+        });
     }
 }
 
@@ -282,24 +319,6 @@ void curvature_along_gradient(const SampleLattice& lattice, std::size_t w_count,
     fill_interior(lattice, w_count, curvature, phase.curvature_along_gradient);
 }
 
-/// The change of every PhaseDerivatives field when the phase changes by field(sample·W + w), to first order:
-/// the change's gradient and Laplacian, the change of ∇|∇Φ|² (from δ|∇Φ|² = 2∇Φ·∇δΦ) and that of the
-/// curvature along the gradient, ½∇δΦ·∇|∇Φ|² + ½∇Φ·∇δ|∇Φ|².
-template <typename Field>
-void phase_change_derivatives(const SampleLattice& lattice, std::size_t w_count, const PhaseDerivatives& phase, const Field& field,
-                              PhaseDerivatives& change) {
-    lattice_derivatives(lattice, w_count, field, change.gradient_x, change.gradient_y, &change.laplacian);
-    const auto squared_gradient_change = [&phase, &change](std::size_t i) {
-        return 2.0 * (phase.gradient_x[i] * change.gradient_x[i] + phase.gradient_y[i] * change.gradient_y[i]);
-    };
-    lattice_derivatives(lattice, w_count, squared_gradient_change, change.squared_gradient_x, change.squared_gradient_y, nullptr);
-    const auto curvature_change = [&phase, &change](std::size_t i) {
-        return 0.5 * (change.gradient_x[i] * phase.squared_gradient_x[i] + change.gradient_y[i] * phase.squared_gradient_y[i] +
-                      phase.gradient_x[i] * change.squared_gradient_x[i] + phase.gradient_y[i] * change.squared_gradient_y[i]);
-    };
-    fill_interior(lattice, w_count, curvature_change, change.curvature_along_gradient);
-}
-
 }  // namespace
 
 void PhotoModelEvaluator::phase_derivatives(const std::vector<InterferenceTerms>& terms, PhaseDerivatives& out) const {
@@ -309,29 +328,66 @@ void PhotoModelEvaluator::phase_derivatives(const std::vector<InterferenceTerms>
 }
 
 void PhotoModelEvaluator::blur_response(const LinearSamples& linear, const PhaseDerivatives& phase, double thickness_um, double blur2_px2,
-                                        const std::vector<Eigen::Vector2d>& shifts, const std::vector<double>& phase_change,
-                                        PhaseDerivatives& change, std::vector<Eigen::Vector3d>& out) const {
-    phase_change_derivatives(lattice_, wavelength_count(), phase, [&phase_change](std::size_t i) { return phase_change[i]; }, change);
+                                        const std::vector<Eigen::Vector2d>& shifts, const std::array<std::vector<double>, 2>& phase_per_xi,
+                                        const std::vector<Eigen::Vector2d>& xi_change, PhaseChangeRoom& room,
+                                        std::vector<Eigen::Vector3d>& out) const {
     const std::size_t w_count = wavelength_count();
     const int samples = static_cast<int>(sample_count());
-    const double d = thickness_um, d2 = thickness_um * thickness_um;
-    out.assign(sample_count(), Eigen::Vector3d::Zero());
+    for (std::vector<double>* part : {&room.gradient_x, &room.gradient_y, &room.laplacian, &room.squared_gradient}) part->resize(phase_per_xi[0].size());
+    // The phase change δΦ = ∂Φ/∂ξ·δξ: its gradient and Laplacian over the photo (the stencils of phase_derivatives) and
+    // the change of |∇Φ|², 2∇Φ·∇δΦ, whose gradient the second pass takes. δΦ is formed where the stencil reads it.
+    const auto change = [&](std::size_t sample, std::size_t w) {
+        const std::size_t i = sample * w_count + w;
+        return phase_per_xi[0][i] * xi_change[sample].x() + phase_per_xi[1][i] * xi_change[sample].y();
+    };
 #pragma omp parallel for schedule(static)
-    for (int k = 0; k < samples; ++k) {
-        const auto i = static_cast<std::size_t>(k);
-        const Eigen::Vector2d shift = shifts.empty() ? Eigen::Vector2d::Zero() : shifts[i];
-        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-        for (std::size_t w = 0, j = i * w_count; w < w_count; ++w, ++j) {
-            // T = mean + fringes(attenuation(∇Φ), phase(∇Φ, ∇²Φ, q)) with q = ∇ΦᵀHessΦ∇Φ: ∂T/∂∇Φ = −σ²d²∇Φ·fringes +
-            // d·shift·∂fringes/∂phase, ∂T/∂∇²Φ = ½σ²d·∂fringes/∂phase, ∂T/∂q = −½σ⁴d³·∂fringes/∂phase.
-            const double dgx = change.gradient_x[j], dgy = change.gradient_y[j];
-            const double rate_change = 0.5 * blur2_px2 * (change.laplacian[j] - blur2_px2 * d2 * change.curvature_along_gradient[j]);
-            const double response = -blur2_px2 * d2 * (phase.gradient_x[j] * dgx + phase.gradient_y[j] * dgy) * linear.fringes[j] +
-                                    d * (rate_change + shift.x() * dgx + shift.y() * dgy) * linear.fringes_per_phase[j];
-            sum += model_.rgb_per_transmission[w] * response;
-        }
-        out[i] = sum;
+    for (int sample = 0; sample < samples; ++sample) {
+        const auto k = static_cast<std::size_t>(sample);
+        const bool inside = interior(lattice_.neighbours[k]);
+        for_each_stencil(lattice_, k, w_count, change, [&](std::size_t w, const Stencil& at) {
+            const std::size_t i = k * w_count + w;
+            room.gradient_x[i] = at.slope_x;
+            room.gradient_y[i] = at.slope_y;
+            room.laplacian[i] = inside ? at.laplacian : 0.0;
+            room.squared_gradient[i] = 2.0 * (phase.gradient_x[i] * at.slope_x + phase.gradient_y[i] * at.slope_y);
+        });
     }
+    const double d = thickness_um, d2 = thickness_um * thickness_um;
+    const Eigen::Matrix<double, Eigen::Dynamic, 3> weights = colour_weights();
+    out.resize(sample_count());
+    const auto squared_gradient = [&room, w_count](std::size_t sample, std::size_t w) { return room.squared_gradient[sample * w_count + w]; };
+#pragma omp parallel
+    {
+        Eigen::VectorXd responses(static_cast<Eigen::Index>(w_count));  // per wavelength, summed with the colour weights
+#pragma omp for schedule(static)
+        for (int sample = 0; sample < samples; ++sample) {
+            const auto k = static_cast<std::size_t>(sample);
+            const bool inside = interior(lattice_.neighbours[k]);
+            const Eigen::Vector2d shift = shifts.empty() ? Eigen::Vector2d::Zero() : shifts[k];
+            for_each_stencil(lattice_, k, w_count, squared_gradient, [&](std::size_t w, const Stencil& squared) {
+                const std::size_t j = k * w_count + w;
+                const double dgx = room.gradient_x[j], dgy = room.gradient_y[j];
+                // The change of the curvature along the gradient, ½∇δΦ·∇|∇Φ|² + ½∇Φ·∇δ|∇Φ|² (interior only, as the curvature).
+                const double curvature_change = inside ? 0.5 * (dgx * phase.squared_gradient_x[j] + dgy * phase.squared_gradient_y[j] +
+                                                                 phase.gradient_x[j] * squared.slope_x + phase.gradient_y[j] * squared.slope_y)
+                                                       : 0.0;
+                // T = mean + fringes(attenuation(∇Φ), phase(∇Φ, ∇²Φ, q)) with q = ∇ΦᵀHessΦ∇Φ: ∂T/∂∇Φ = −σ²d²∇Φ·fringes +
+                // d·shift·∂fringes/∂phase, ∂T/∂∇²Φ = ½σ²d·∂fringes/∂phase, ∂T/∂q = −½σ⁴d³·∂fringes/∂phase.
+                const double rate_change = 0.5 * blur2_px2 * (room.laplacian[j] - blur2_px2 * d2 * curvature_change);
+                responses[static_cast<Eigen::Index>(w)] =
+                    -blur2_px2 * d2 * (phase.gradient_x[j] * dgx + phase.gradient_y[j] * dgy) * linear.fringes[j] +
+                    d * (rate_change + shift.x() * dgx + shift.y() * dgy) * linear.fringes_per_phase[j];
+            });
+            out[k] = weights.transpose() * responses;
+        }
+    }
+}
+
+Eigen::Matrix<double, Eigen::Dynamic, 3> PhotoModelEvaluator::colour_weights() const {
+    static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double));
+    return Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>>(model_.rgb_per_transmission.front().data(), 3,
+                                                                      static_cast<Eigen::Index>(wavelength_count()))
+        .transpose();
 }
 
 namespace {
@@ -405,12 +461,9 @@ void PhotoModelEvaluator::linear(const std::vector<InterferenceTerms>& terms, co
         out.fringes.resize(terms.size());
         out.fringes_per_phase.resize(terms.size());
     }
-    // The colour weights, a column per channel: every sum over the wavelengths below is a product with them,
-    // each of its entries a dot product of two contiguous columns (lazy: too small for a blocked product).
-    static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double));
-    const Eigen::Matrix<double, Eigen::Dynamic, 3> weights =
-        Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>>(model_.rgb_per_transmission.front().data(), 3, static_cast<Eigen::Index>(w_count))
-            .transpose();
+    // Every sum over the wavelengths below is a product with the colour weights, each of its entries a dot product of
+    // two contiguous columns (lazy: too small for a blocked product).
+    const Eigen::Matrix<double, Eigen::Dynamic, 3> weights = colour_weights();
 #pragma omp parallel
     {
         WavelengthTable table(static_cast<Eigen::Index>(w_count), static_cast<Eigen::Index>(kWavelengthColumns));

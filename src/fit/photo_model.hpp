@@ -80,6 +80,12 @@ struct PhaseDerivatives {
     std::vector<double> squared_gradient_x, squared_gradient_y, curvature_along_gradient;
 };
 
+/// Room for PhotoModelEvaluator::blur_response, [sample·W + w]: the phase change's gradient and Laplacian over the photo,
+/// and the change of |∇Φ|².
+struct PhaseChangeRoom {
+    std::vector<double> gradient_x, gradient_y, laplacian, squared_gradient;
+};
+
 /// Linear sRGB of every sample, and optionally its derivatives by thickness, by the blur's σ² and by the
 /// point where the figure is sampled (d_shift_x, d_shift_y: per pixel). With `keep_fringe_terms` (and the
 /// derivatives), also each wavelength's blurred fringes and their derivative by the phase, [sample·W + w],
@@ -127,22 +133,25 @@ public:
     void linear(const std::vector<InterferenceTerms>& terms, const PhaseDerivatives& phase, double thickness_um, double blur2_px2,
                 const std::vector<Eigen::Vector2d>& shifts, bool derivatives, LinearSamples& out) const;
 
-    /// What a change `phase_change[sample·W + w]` of every phase does to the linear sRGB through the fringe
-    /// blur alone: the change of the phase's gradient, Laplacian and curvature along the gradient over the
-    /// photo (phase_derivatives' stencils, linearised) times ∂(transmission)/∂ of each, summed over the
-    /// wavelengths. A parameter that moves ξ by different amounts at different samples (the field radius, the
-    /// rotation, the distortion, the centre of a projection other than the sine) changes them.
-    /// `linear` holds the fringe terms of that thickness and blur (keep_fringe_terms).
-    /// `change` is room for the change's derivatives (its contents are overwritten).
+    /// What moving each sample's ξ by `xi_change[sample]` does to the linear sRGB through the fringe blur alone: the
+    /// phase changes by δΦ = ∂Φ/∂ξ·δξ (`phase_per_xi`, per axis, [sample·W + w]), and so do its gradient, Laplacian and
+    /// curvature along the gradient over the photo (phase_derivatives' stencils, linearised), times ∂(transmission)/∂ of
+    /// each, summed over the wavelengths. A parameter that moves ξ by different amounts at different samples (the field
+    /// radius, the rotation, the distortion, the centre of a projection other than the sine) changes them.
+    /// `linear` holds the fringe terms of that thickness and blur (keep_fringe_terms); `room` holds the intermediate
+    /// results (its contents are overwritten).
     void blur_response(const LinearSamples& linear, const PhaseDerivatives& phase, double thickness_um, double blur2_px2,
-                       const std::vector<Eigen::Vector2d>& shifts, const std::vector<double>& phase_change, PhaseDerivatives& change,
-                       std::vector<Eigen::Vector3d>& out) const;
+                       const std::vector<Eigen::Vector2d>& shifts, const std::array<std::vector<double>, 2>& phase_per_xi,
+                       const std::vector<Eigen::Vector2d>& xi_change, PhaseChangeRoom& room, std::vector<Eigen::Vector3d>& out) const;
 
     /// Where a blurred photo of light E·F shows the figure F: blur(E·F) = E·blur(F)(p + σ²∇ln E) to first
     /// order in σ² (Taylor expansion under the Gaussian), so σ²·∇ln E per sample; empty for even light.
     std::vector<Eigen::Vector2d> blur_shifts(const std::vector<EnvelopeValue>& envelope, double blur2_px2) const;
 
 private:
+    /// The colour weights (model.rgb_per_transmission), a row per wavelength and a column per channel.
+    Eigen::Matrix<double, Eigen::Dynamic, 3> colour_weights() const;
+
     const ConoscopePhotoModel& model_;
     SampleLattice lattice_;
 };

@@ -85,7 +85,10 @@ void ConoscopeTerms::evaluate(const std::vector<Eigen::Vector2d>& xis, std::vect
         detail::KernelScratch nodes, every_wavelength;
         // Each scratch's roots start the next point's iterations once it has solved a point.
         bool nodes_continue = false, every_wavelength_continues = false;
-#pragma omp for schedule(static)
+        // Points solved at every wavelength cost several times those from the nodes, and they gather in parts of
+        // the field (its rim, a melatope): the points are dealt to the threads in runs of 32, in turn, so that each
+        // thread gets its share of both; a run is neighbours, whose roots start each other's iterations.
+#pragma omp for schedule(static, 32)
         for (int k = 0; k < points; ++k) {
             const auto point = static_cast<std::size_t>(k);
             InterferenceTerms* terms = out.data() + point * count;
