@@ -98,7 +98,10 @@ void PhotoCostJacobian512(benchmark::State& state) {
     for (auto _ : state) {
         at(values, PhotoParameter::center_x_px) += (evaluation++ % 2 == 0 ? 1e-3 : -1e-3);
         const double* parameters[] = {values.data()};
-        if (!cost.Evaluate(parameters, residuals.data(), jacobians)) state.SkipWithError("the cost refused the point");
+        if (!cost.Evaluate(parameters, residuals.data(), jacobians)) {
+            state.SkipWithError("the cost refused the point");
+            break;
+        }
         benchmark::DoNotOptimize(jacobian.data());
     }
     state.counters["samples"] = static_cast<double>(level.evaluator.sample_count());

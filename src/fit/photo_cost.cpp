@@ -112,7 +112,6 @@ void PhotoCost::direction_columns(const PhotoParameters& values, const std::vect
     LinearSamples& moved = scratch_.moved;
     std::array<std::vector<Eigen::Vector3d>, 2>& d_xi = scratch_.d_xi;
     std::array<std::vector<double>, 2>& d_phase_d_xi = scratch_.d_phase_d_xi;
-    std::vector<Eigen::Vector2d>& xi_change = scratch_.xi_change;
     std::vector<Eigen::Vector3d>& through_blur = scratch_.through_blur;
     for (std::size_t axis = 0; axis < 2; ++axis) {
         level_.evaluator.terms(values, shifted, kXiStep * (axis == 0 ? Eigen::Vector2d::UnitX() : Eigen::Vector2d::UnitY()),
@@ -130,22 +129,21 @@ void PhotoCost::direction_columns(const PhotoParameters& values, const std::vect
             }
         }
     }
-    std::vector<std::array<Eigen::Vector2d, 5>>& dxi = scratch_.d_xi_d_parameters;
-    dxi.resize(samples);
+    std::array<std::vector<Eigen::Vector2d>, kDirectionParameters.size()>& dxi = scratch_.d_xi_d_parameters;
+    for (std::vector<Eigen::Vector2d>& per_parameter : dxi) per_parameter.resize(samples);
 #pragma omp parallel for schedule(static)
     for (int sample = 0; sample < static_cast<int>(samples); ++sample) {
         const auto k = static_cast<std::size_t>(sample);
-        dxi[k] = direction_derivatives(level_.evaluator.model(), values, level_.evaluator.lattice().pixels[k]);
+        const std::array<Eigen::Vector2d, 5> at = direction_derivatives(level_.evaluator.model(), values, level_.evaluator.lattice().pixels[k]);
+        for (std::size_t j = 0; j < at.size(); ++j) dxi[j][k] = at[j];
     }
-    xi_change.resize(samples);
     for (std::size_t j = 0; j < kDirectionParameters.size(); ++j) {
         if (!free_[static_cast<std::size_t>(kDirectionParameters[j])]) continue;
         std::vector<Eigen::Vector3d>& column = d_linear[static_cast<std::size_t>(kDirectionParameters[j])];
         column.resize(samples);
-        for (std::size_t k = 0; k < samples; ++k) xi_change[k] = dxi[k][j];
-        level_.evaluator.blur_response(unlit, cached_phase_, values[kThickness], blur2, shifts, d_phase_d_xi, xi_change, scratch_.phase_change,
+        level_.evaluator.blur_response(unlit, cached_phase_, values[kThickness], blur2, shifts, d_phase_d_xi, dxi[j], scratch_.phase_change,
                                        through_blur);
-        for (std::size_t k = 0; k < samples; ++k) column[k] = d_xi[0][k] * dxi[k][j].x() + d_xi[1][k] * dxi[k][j].y() + through_blur[k];
+        for (std::size_t k = 0; k < samples; ++k) column[k] = d_xi[0][k] * dxi[j][k].x() + d_xi[1][k] * dxi[j][k].y() + through_blur[k];
     }
 }
 

@@ -66,8 +66,7 @@ private:
         std::array<std::vector<Eigen::Vector3d>, kPhotoParameterCount> d_linear;
         std::array<std::vector<Eigen::Vector3d>, 2> d_xi;
         std::array<std::vector<double>, 2> d_phase_d_xi;
-        std::vector<std::array<Eigen::Vector2d, 5>> d_xi_d_parameters;  // direction_derivatives at every sample
-        std::vector<Eigen::Vector2d> xi_change;  // one parameter's ∂ξ/∂p at every sample
+        std::array<std::vector<Eigen::Vector2d>, kDirectionParameters.size()> d_xi_d_parameters;  // [parameter][sample]: ∂ξ/∂p
         PhaseChangeRoom phase_change;
         std::vector<Eigen::Vector3d> through_blur;
         PhaseDerivatives moved_phase;

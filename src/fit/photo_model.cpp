@@ -253,17 +253,17 @@ void for_each_stencil(const SampleLattice& lattice, std::size_t k, std::size_t w
     }
     for (std::size_t w = 0; w < w_count; ++w) {
         const double centre = value(k, w);
-        Stencil at{0.0, 0.0, 0.0};
-        double* slopes[] = {&at.slope_x, &at.slope_y};
+        std::array<double, 2> slopes{};
+        double laplacian = 0.0;  // used at interior samples only
         for (std::size_t axis = 0; axis < 2; ++axis) {
             const int minus = n[2 * axis], plus = n[2 * axis + 1];
             const double low = minus >= 0 ? value(static_cast<std::size_t>(minus), w) : centre;
             const double high = plus >= 0 ? value(static_cast<std::size_t>(plus), w) : centre;
             const int span = (minus >= 0 ? 1 : 0) + (plus >= 0 ? 1 : 0);
-            *slopes[axis] = span > 0 ? (high - low) / (span * stride) : 0.0;
-            at.laplacian += (high - 2.0 * centre + low) / (stride * stride);  // used at interior samples only
+            slopes[axis] = span > 0 ? (high - low) / (span * stride) : 0.0;
+            laplacian += (high - 2.0 * centre + low) / (stride * stride);
         }
-        visit(w, at);
+        visit(w, Stencil{slopes[0], slopes[1], laplacian});
     }
 }
 
