@@ -216,9 +216,10 @@ std::vector<ThicknessMinimum> thickness_minima(const PhotoLevel& level, const st
     const double blur2 = at(values, PhotoParameter::blur_variance_px2) + level.extra_blur_px * level.extra_blur_px;
     const std::vector<Eigen::Vector2d> shifts = level.evaluator.blur_shifts(envelope, blur2);
     // Fringes are resolved (attenuation above e^−2) while σ²d²|∇Φ|² < 4: the largest phase among those,
-    // found from the terms sorted by |∇Φ|.
+    // found from the terms sorted by |∇Φ|, of the samples that show light (beyond grazing they keep a phase).
     std::vector<std::pair<double, double>> by_gradient;  // (|∇Φ|², |Φ|)
     for (std::size_t k = 0; k < terms.size(); ++k) {
+        if (terms[k].mean == 0.0 && terms[k].modulation == 0.0 && terms[k].sine_modulation == 0.0) continue;
         by_gradient.emplace_back(phase.gradient_x[k] * phase.gradient_x[k] + phase.gradient_y[k] * phase.gradient_y[k], std::abs(terms[k].phase_per_um));
     }
     std::sort(by_gradient.begin(), by_gradient.end());
@@ -310,12 +311,12 @@ Statistics residual_statistics(const PhotoLevel& level, const PhotoCost& cost, c
     return {std::sqrt(squared / (3.0 * n)), total > 0.0 ? 1.0 - squared / total : 0.0};
 }
 
-/// 1σ from the Ceres covariance C = (JᵀJ)⁻¹ made robust to residuals that are correlated over the photo
+/// 1σ from the covariance C = (JᵀJ)⁺ made robust to residuals that are correlated over the photo
 /// (blur, JPEG blocks, what the model leaves out): the cluster sandwich C·(Σ_b g_b g_bᵀ)·C with
 /// g_b = J_bᵀr_b summed over square blocks of the field (Liang & Zeger 1986; Cameron & Miller 2015, eq. 11),
 /// times G/(G − 1) for G blocks. Which free parameters the photo does not determine: those in near-null
 /// directions of the scaled normal matrix, or with a huge 1σ.
-void uncertainties(ceres::Problem& problem, const PhotoCost& cost, const PhotoLevel& level, ConoscopeFitResult& result,
+void uncertainties(const PhotoCost& cost, const PhotoLevel& level, ConoscopeFitResult& result,
                    const ConoscopeFitOptions& options) {
     std::vector<int> free_indices;
     for (int j = 0; j < kPhotoParameterCount; ++j) {
@@ -369,17 +370,19 @@ void uncertainties(ceres::Problem& problem, const PhotoCost& cost, const PhotoLe
         }
     }
 
-    ceres::Covariance::Options covariance_options;
-    covariance_options.algorithm_type = ceres::DENSE_SVD;
-    covariance_options.null_space_rank = -1;  // near-null directions are reported as unidentified above
-    covariance_options.min_reciprocal_condition_number = 1e-14;
-    ceres::Covariance covariance(covariance_options);
-    std::vector<double> block(kPhotoParameterCount * kPhotoParameterCount, 0.0);
-    const std::vector<std::pair<const double*, const double*>> blocks{{result.values.data(), result.values.data()}};
-    const bool computed = covariance.Compute(blocks, &problem) &&
-                          covariance.GetCovarianceBlock(result.values.data(), result.values.data(), block.data());
-
-    const Eigen::Map<const Eigen::Matrix<double, kPhotoParameterCount, kPhotoParameterCount, Eigen::RowMajor>> bread(block.data());
+    // C = (JᵀJ)⁺ from the same decomposition: S·V·Λ⁺·Vᵀ·S, the directions below 10⁻¹⁴ of the largest eigenvalue
+    // dropped (they are reported as unidentified above; a pseudo-inverse, as a truncated SVD of J gives it).
+    Eigen::VectorXd inverse_eigenvalues(p);
+    for (int e = 0; e < p; ++e) {
+        const double eigenvalue = eigen.eigenvalues()[e];
+        inverse_eigenvalues[e] = eigenvalue > 1e-14 * largest ? 1.0 / eigenvalue : 0.0;
+    }
+    const Eigen::MatrixXd free_covariance =
+        scale.asDiagonal() * eigen.eigenvectors() * inverse_eigenvalues.asDiagonal() * eigen.eigenvectors().transpose() * scale.asDiagonal();
+    Eigen::Matrix<double, kPhotoParameterCount, kPhotoParameterCount> bread = Eigen::Matrix<double, kPhotoParameterCount, kPhotoParameterCount>::Zero();
+    for (int a = 0; a < p; ++a) {
+        for (int b = 0; b < p; ++b) bread(free_indices[a], free_indices[b]) = free_covariance(a, b);
+    }
     const Eigen::Matrix<double, kPhotoParameterCount, kPhotoParameterCount> sandwich = bread * meat * bread.transpose();
     const double radius = at(result.values, PhotoParameter::field_radius_px);
     for (int j = 0; j < kPhotoParameterCount; ++j) {
@@ -390,7 +393,7 @@ void uncertainties(ceres::Problem& problem, const PhotoCost& cost, const PhotoLe
         if (!fitted.free) continue;
         const double encoding_shift = result.encoding_shift ? (*result.encoding_shift)[k] : 0.0;
         const double variance_j = sandwich(j, j) + encoding_shift * encoding_shift;
-        const double sigma = computed && variance_j >= 0.0 ? std::sqrt(variance_j) : std::numeric_limits<double>::infinity();
+        const double sigma = variance_j >= 0.0 ? std::sqrt(variance_j) : std::numeric_limits<double>::infinity();
         double limit = kUnidentifiedSigma[k];
         if (j == static_cast<int>(PhotoParameter::thickness_um)) limit *= fitted.value;
         if (j >= static_cast<int>(PhotoParameter::center_x_px) && j <= static_cast<int>(PhotoParameter::field_radius_px)) limit = 0.1 * radius;
@@ -408,9 +411,9 @@ void uncertainties(ceres::Problem& problem, const PhotoCost& cost, const PhotoLe
     for (int a = 0; a < p; ++a) {
         for (int b = 0; b < a; ++b) {
             const auto ka = static_cast<std::size_t>(free_indices[a]), kb = static_cast<std::size_t>(free_indices[b]);
-            const double denominator = std::sqrt(block[ka * kPhotoParameterCount + ka] * block[kb * kPhotoParameterCount + kb]);
+            const double denominator = std::sqrt(bread(ka, ka) * bread(kb, kb));
             if (!(denominator > 0.0)) continue;
-            const double correlation = block[ka * kPhotoParameterCount + kb] / denominator;
+            const double correlation = bread(ka, kb) / denominator;
             if (std::abs(correlation) <= 0.999) continue;
             const bool degenerate = std::abs(correlation) > 0.9999;
             result.warnings.push_back(std::string(kNames[kb]) + " and " + std::string(kNames[ka]) + " are correlated " +
@@ -435,7 +438,7 @@ void uncertainties(ceres::Problem& problem, const PhotoCost& cost, const PhotoLe
         const double relative_variance = sandwich(d, d) / (thickness_um * thickness_um) + 4.0 * sandwich(r, r) / (radius_px * radius_px) -
                                          4.0 * sandwich(d, r) / (thickness_um * radius_px) + encoding_shift * encoding_shift;
         const double ratio = thickness_um / (radius_px * radius_px);
-        const std::string sigma = computed && relative_variance >= 0.0 ? " +- " + format_significant(ratio * std::sqrt(relative_variance), 3) : "";
+        const std::string sigma = relative_variance >= 0.0 ? " +- " + format_significant(ratio * std::sqrt(relative_variance), 3) : "";
         result.warnings.push_back("the thickness is not determined: a centred uniaxial figure fixes only thickness x scale^2 (the ring "
                                   "radii; scale = sin(theta) per pixel = NA / field_radius_px), here thickness_um / field_radius_px^2 = " +
                                   format_significant(ratio, 6) + sigma + "; fix the scale (--fix field_radius_px=...) or use an off-centre figure");
@@ -704,8 +707,7 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
     }
     reached(0.98);
 
-    const std::unique_ptr<ceres::Problem> final_problem = make_problem(*fine, result.values, options, bounds);
-    uncertainties(*final_problem, cost, *fine, result, options);
+    uncertainties(cost, *fine, result, options);
     // A thickness left on the box's bound (half the searched range's start, twice its end) is not at a minimum of the
     // cost, which would go on past it: the photo does not determine it there, whatever the covariance says.
     const std::size_t thickness_index = index_of(PhotoParameter::thickness_um);

@@ -169,12 +169,20 @@ void PhotoModelEvaluator::analyzer_terms(const PhotoParameters& values, bool wit
     }
     // No light reaches the objective (in air) from beyond grazing, |ξ| ≥ 1: where a projection shows no
     // direction, and where a geometry far from the photo's (a small field, a centre off the image) maps
-    // samples (beyond |ξ| ≥ n of the immersion no wave propagates and the kernel's terms are undefined).
+    // samples. Such a sample is dark but keeps its phase: it is still a neighbour in the stencils of the
+    // phase's derivatives over the photo, which would otherwise see the phase step to 0 as it crosses grazing
+    // and blur its lit neighbours' fringes away at once. Beyond |ξ| ≥ n of the immersion no wave propagates
+    // and the kernel's phase is undefined: 0 there.
     const std::size_t w_count = wavelength_count();
     for (std::size_t k = 0; k < xis.size(); ++k) {
         if (xis[k].norm() < 1.0) continue;
         for (std::vector<InterferenceTerms>* part : {&out.passed, &out.blocked}) {
-            if (!part->empty()) std::fill_n(part->begin() + static_cast<std::ptrdiff_t>(k * w_count), w_count, InterferenceTerms{});
+            if (part->empty()) continue;
+            for (std::size_t i = k * w_count; i < (k + 1) * w_count; ++i) {
+                const double phase_per_um = (*part)[i].phase_per_um;
+                (*part)[i] = InterferenceTerms{};
+                (*part)[i].phase_per_um = std::isfinite(phase_per_um) ? phase_per_um : 0.0;
+            }
         }
     }
 }

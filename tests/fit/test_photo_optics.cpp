@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -152,6 +153,46 @@ TEST(PhotoOptics, AnAnalyzerThatPassesWhatItShouldBlockShowsTheLightWithoutAnaly
     }
     std::printf("%zu terms: largest difference %.2e\n", leaked.size(), worst);
     EXPECT_LT(worst, 1e-12);
+}
+
+TEST(PhotoOptics, APixelCrossingGrazingGoesDarkWithoutMovingItsNeighboursPhaseDerivatives) {
+    // Sine projection: |ξ| = NA·r/R reaches 1 at r = R/NA. The pixel 60 px right of the centre is put
+    // 0.01 px inside that horizon and then 0.01 px beyond it: it goes dark, but as a neighbour in the phase's
+    // difference stencils it must not step (its phase set to 0 moved its lit neighbour's gradient by Φ/2h).
+    const ConoscopePhotoModel model = calcite_model(Projection::sine);
+    const double na = model.settings.numerical_aperture;
+    const detail::PhotoModelEvaluator evaluator(model, detail::sample_lattice({50.5, 50.5}, 40.0, 2, 100, 100));
+    const auto index_at = [&](const Eigen::Vector2d& pixel) {
+        const auto& pixels = evaluator.lattice().pixels;
+        return static_cast<std::size_t>(std::find(pixels.begin(), pixels.end(), pixel) - pixels.begin());
+    };
+    const std::size_t crossing = index_at({80.5, 50.5}), lit = index_at({78.5, 50.5});
+    ASSERT_LT(crossing, evaluator.sample_count());
+    ASSERT_EQ(evaluator.lattice().neighbours[lit][1], static_cast<int>(crossing));
+    const std::size_t w_count = evaluator.wavelength_count();
+    std::array<detail::PhaseDerivatives, 2> phase;
+    for (int side = 0; side < 2; ++side) {
+        PhotoParameters values = default_photo_parameters(100, 100);
+        at(values, PhotoParameter::field_radius_px) = 60.0 * na;
+        at(values, PhotoParameter::center_x_px) = 20.5 + (side == 0 ? 0.01 : -0.01);
+        at(values, PhotoParameter::center_y_px) = 50.5;
+        std::vector<InterferenceTerms> terms;
+        evaluator.terms(values, terms);
+        evaluator.phase_derivatives(terms, phase[static_cast<std::size_t>(side)]);
+        const InterferenceTerms& seen = terms[crossing * w_count];
+        EXPECT_EQ(seen.mean == 0.0 && seen.modulation == 0.0 && seen.sine_modulation == 0.0, side == 1) << "side " << side;
+        EXPECT_TRUE(std::isfinite(seen.phase_per_um) && seen.phase_per_um != 0.0) << "side " << side;
+    }
+    double worst = 0.0;
+    for (std::size_t w = 0; w < w_count; ++w) {
+        const std::size_t i = lit * w_count + w;
+        const double scale = std::hypot(phase[0].gradient_x[i], phase[0].gradient_y[i]);
+        worst = std::max(worst, std::abs(phase[1].gradient_x[i] - phase[0].gradient_x[i]) / scale);
+    }
+    // The 0.02-px move itself changes the gradient there by 8e-4 (linear in the move: 2e-4 for 0.005 px); the step
+    // to a phase of 0 was 6.1.
+    std::printf("the lit neighbour's phase gradient moved by %.2e of itself\n", worst);
+    EXPECT_LT(worst, 1e-2);
 }
 
 /// Whether the cost takes this parameter's derivative by a forward difference (through ξ or the terms).
