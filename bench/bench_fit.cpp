@@ -76,9 +76,10 @@ void FitRealisticCamera512(benchmark::State& state) {
 }
 BENCHMARK(FitRealisticCamera512)->DenseRange(0, 19)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 
-/// One evaluation of the fit's cost with its Jacobian on the final level of a 512² photo (case 10 of the test bed, the
-/// lattice every 4th pixel as the fit's: 16384 samples, every term free that the bed frees), the geometry moved a
-/// little each time so that the figure's terms are computed anew, as in every iteration of a refinement.
+/// One evaluation of the fit's cost with its Jacobian on a final level of a 512² photo (case 10 of the test bed, the
+/// lattice every 4th pixel: 16384 samples, as the fit's until its final level took every 5th; every term free that the
+/// bed frees), the geometry moved a little each time so that the figure's terms are computed anew, as in every
+/// iteration of a refinement.
 void PhotoCostJacobian512(benchmark::State& state) {
     constexpr int kSize = 512, kCase = 10;
     const testing::CameraCase c = testing::random_case(kCase, kSize);

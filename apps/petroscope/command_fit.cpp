@@ -120,7 +120,7 @@ nlohmann::json report_json(const ConoscopeFitResult& result, const FitOptions& o
             {"model", "camera value = black + (gain * envelope * linear sRGB)^(1/gamma); figure: single-pass Jones from the exact "
                       "eigenmodes (ConoscopeTerms; in white light interpolated from 8 spectral nodes where accurate) through the analyzer plus extinction_ratio times the light it blocks, blur by the "
                       "local fringe approximation; see docs/fitting.md"},
-            {"sigma_meaning", "1 sigma from the Ceres covariance with a cluster-robust (sandwich) correction over blocks of the field; "
+            {"sigma_meaning", "1 sigma from the Gauss-Newton covariance (J^T J)^+ with a cluster-robust (sandwich) correction over blocks of the field; "
                               "for a checked JPEG photo, plus encoding_shift in quadrature (the shift when the best fit is encoded "
                               "as the photo was and fitted again)"}};
 }
