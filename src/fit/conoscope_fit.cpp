@@ -586,7 +586,7 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
     const auto coarse = level(coarse_stride, 0.75 * coarse_stride);
     const auto scan = level(coarse_stride, 0.0);
     // The full photo's 10000: the last refinement and the encoding check, most of a fit, scale with it. At 512² that is
-    // every 5th pixel (every 4th for 15000: the realistic-camera bed in 0.77 of the time, the same cases within 2% and
+    // every 5th pixel (every 4th for 15000: the realistic-camera bed in 0.83 of the time, the same cases within 2% and
     // 2σ, each error moved within about its 1σ; docs/fitting.md, "Benchmark").
     const auto fine = level(stride(10000.0), 0.0);
     if (fine->usable_count < 0.1 * static_cast<double>(fine->evaluator.sample_count()) || fine->usable_count < 50) {
