@@ -219,7 +219,7 @@ std::vector<ThicknessMinimum> thickness_minima(const PhotoLevel& level, const st
     // found from the terms sorted by |∇Φ|, of the samples that show light (beyond grazing they keep a phase).
     std::vector<std::pair<double, double>> by_gradient;  // (|∇Φ|², |Φ|)
     for (std::size_t k = 0; k < terms.size(); ++k) {
-        if (terms[k].mean == 0.0 && terms[k].modulation == 0.0 && terms[k].sine_modulation == 0.0) continue;
+        if (detail::shows_no_light(terms[k])) continue;
         by_gradient.emplace_back(phase.gradient_x[k] * phase.gradient_x[k] + phase.gradient_y[k] * phase.gradient_y[k], std::abs(terms[k].phase_per_um));
     }
     std::sort(by_gradient.begin(), by_gradient.end());
@@ -585,7 +585,7 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
     const auto search = level(search_stride, search_stride);
     const auto coarse = level(coarse_stride, 0.75 * coarse_stride);
     const auto scan = level(coarse_stride, 0.0);
-    // The full photo's 10000: the last refinement and the encoding check, most of a fit, scale with it. At 512² that is
+    // The full photo on about 10000: the last refinement and the encoding check, most of a fit, scale with it. At 512² that is
     // every 5th pixel (every 4th for 15000: the realistic-camera bed in 0.83 of the time, the same cases within 2% and
     // 2σ, each error moved within about its 1σ; docs/fitting.md, "Benchmark").
     const auto fine = level(stride(10000.0), 0.0);

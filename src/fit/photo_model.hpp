@@ -70,6 +70,11 @@ struct AnalyzerTerms {
     std::vector<unsigned char> from_nodes;  // per sample: the terms came from the spectral nodes (ConoscopeTerms::evaluate)
 };
 
+/// Whether a sample's terms carry no light: what analyzer_terms leaves beyond grazing, where only the phase is kept.
+inline bool shows_no_light(const InterferenceTerms& terms) {
+    return terms.mean == 0.0 && terms.modulation == 0.0 && terms.sine_modulation == 0.0;
+}
+
 /// passed + extinction_ratio · blocked (passed alone when blocked is empty).
 void leaked_terms(const AnalyzerTerms& terms, double extinction_ratio, std::vector<InterferenceTerms>& out);
 
