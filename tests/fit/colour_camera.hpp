@@ -1,9 +1,11 @@
 #pragma once
 // A camera that renders colour the way real ones do, not the way the fits model it: light falling off across
-// the field, a colour matrix and a white balance that are slightly off, an S-shaped "look" curve after the
-// sRGB curve, noise, a Bayer mosaic demosaiced bilinearly, JPEG. The steps follow a camera's own pipeline
-// (raw sensor → white balance → colour matrix → tone curve → JPEG; e.g. Ramanath et al., "Color image
-// processing pipeline", IEEE Signal Processing Magazine 22(1), 34 (2005)).
+// the field, sensor colours that the camera's colour correction leaves slightly off (a colour matrix, applied at
+// the sensor) and a white balance slightly off, shot and read noise on a Bayer sensor demosaiced bilinearly, the
+// sRGB curve and an S-shaped "look" curve after it, JPEG. The steps follow a camera's own pipeline, which
+// demosaics the linear raw values before the tone curve (raw sensor → white balance → demosaicing → colour
+// correction → tone curve → JPEG; Ramanath et al., "Color image processing pipeline", IEEE Signal Processing
+// Magazine 22(1), 34 (2005)).
 #include "petroscope/core/image.hpp"
 #include "petroscope/microscope/thin_section.hpp"
 #include "petroscope/spectral/color.hpp"
@@ -28,7 +30,10 @@ struct ColourCamera {
     double look_steepness = 0.0;  // the S curve's logistic steepness k after the sRGB curve (0: none)
     Eigen::Vector2d light_centre_px{0.0, 0.0};
     double light_falloff = 0.0;  // illumination 1 − falloff·(r / frame width)² about light_centre_px
-    double noise = 2.0 / 255.0;  // Gaussian, code units, before the mosaic
+    // The sensor's noise: shot noise of a well holding `full_well_electrons` at full scale and read noise, in
+    // electrons rms (about 2 code levels rms at mid-grey with these values), then a 12-bit raw value.
+    double full_well_electrons = 4000.0;
+    double read_noise_electrons = 2.0;
     int jpeg_quality = 75;  // 0: no JPEG
 
     /// A random camera of the kind a petrographer's is: white balance within ±15%, a colour matrix with
@@ -61,9 +66,10 @@ struct ColourCamera {
     /// JPEG file's bytes to `jpeg_file` when given.
     Image photograph(const cv::Mat& linear, unsigned seed, std::vector<std::uint8_t>* jpeg_file = nullptr) const {
         std::mt19937 random(seed);
-        std::normal_distribution<double> noise_of(0.0, noise);
-        // The sensor: one colour per pixel, RGGB (R at even rows and columns).
-        cv::Mat mosaic(linear.rows, linear.cols, CV_8UC1);
+        std::normal_distribution<double> unit_noise(0.0, 1.0);
+        constexpr double kRawFullScale = 4095.0;  // a 12-bit raw file
+        // The sensor: one colour per pixel, RGGB (R at even rows and columns), shot and read noise.
+        cv::Mat raw(linear.rows, linear.cols, CV_16UC1);
         for (int y = 0; y < linear.rows; ++y) {
             for (int x = 0; x < linear.cols; ++x) {
                 const cv::Vec3d& pixel = linear.at<cv::Vec3d>(y, x);
@@ -71,12 +77,22 @@ struct ColourCamera {
                                                (static_cast<double>(linear.cols) * linear.cols);
                 const Eigen::Vector3d rgb = colour_matrix * white_balance.cwiseProduct(exposure * light * Eigen::Vector3d(pixel[0], pixel[1], pixel[2]));
                 const int channel = (y % 2 == 0 && x % 2 == 0) ? 0 : (y % 2 == 1 && x % 2 == 1) ? 2 : 1;
-                const double code = look(encode_srgb(std::clamp(rgb[channel], 0.0, 1.0))) + noise_of(random);
-                mosaic.at<unsigned char>(y, x) = static_cast<unsigned char>(std::lround(std::clamp(code, 0.0, 1.0) * 255.0));
+                const double electrons = std::clamp(rgb[channel], 0.0, 1.0) * full_well_electrons;
+                const double noisy = electrons + std::sqrt(electrons + read_noise_electrons * read_noise_electrons) * unit_noise(random);
+                raw.at<std::uint16_t>(y, x) = static_cast<std::uint16_t>(std::lround(std::clamp(noisy / full_well_electrons, 0.0, 1.0) * kRawFullScale));
             }
         }
-        cv::Mat bgr;
-        cv::cvtColor(mosaic, bgr, cv::COLOR_BayerBG2BGR);  // OpenCV names the RGGB layout above "BG"
+        cv::Mat demosaiced;
+        cv::cvtColor(raw, demosaiced, cv::COLOR_BayerBG2BGR);  // bilinear; OpenCV names the RGGB layout above "BG"
+        cv::Mat bgr(linear.rows, linear.cols, CV_8UC3);
+        for (int y = 0; y < linear.rows; ++y) {
+            for (int x = 0; x < linear.cols; ++x) {
+                for (int c = 0; c < 3; ++c) {
+                    const double code = look(encode_srgb(demosaiced.at<cv::Vec3w>(y, x)[c] / kRawFullScale));
+                    bgr.at<cv::Vec3b>(y, x)[c] = static_cast<unsigned char>(std::lround(std::clamp(code, 0.0, 1.0) * 255.0));
+                }
+            }
+        }
         if (jpeg_quality > 0) {
             std::vector<unsigned char> bytes;
             cv::imencode(".jpg", bgr, bytes, {cv::IMWRITE_JPEG_QUALITY, jpeg_quality});

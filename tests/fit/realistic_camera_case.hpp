@@ -2,8 +2,8 @@
 // The realistic-camera test bed of the conoscope fit (issue 18, item 4), shared by its test and bench_fit:
 // seeded random cases, each a figure through real optics (camera_optics_photo.hpp: sine or tangent
 // projection, off the frame's centre and cut by it, the light falling off about its own centre) and a camera
-// the fit does not model exactly (colour_camera.hpp: vignetting, white balance and colour matrix off, an
-// S-shaped look curve after the sRGB curve, noise, an RGGB Bayer mosaic demosaiced, JPEG 75).
+// the fit does not model exactly (colour_camera.hpp: vignetting, white balance and colour matrix off, shot and read
+// noise on an RGGB Bayer sensor demosaiced before the tone curve, an S-shaped look curve after the sRGB curve, JPEG 75).
 #include "camera_optics_photo.hpp"
 #include "colour_camera.hpp"
 

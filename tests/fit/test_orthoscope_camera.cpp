@@ -92,12 +92,12 @@ private:
 };
 
 TEST(OrthoscopeCameraCalibration, AnExactCameraIsRecoveredFromTheHole) {
-    // Only the white balance and the exposure off, the light even, no look curve, no JPEG; noise of 1/255
-    // dithers the 8-bit codes so that their mean is not biased by the rounding.
+    // Only the white balance and the exposure off, the light even, no look curve, no JPEG; the sensor's noise
+    // (about 1 code level rms at mid-grey) dithers the 8-bit codes so that their mean is not biased by the rounding.
     testing::ColourCamera camera;
     camera.exposure = 0.9;
     camera.white_balance = {1.12, 1.0, 0.86};
-    camera.noise = 1.0 / 255.0;
+    camera.full_well_electrons = 16000.0;
     camera.jpeg_quality = 0;
     const HoleAndGrain bench;
     const std::vector<GrainPhoto> photos = bench.take("quartz", 30.0, 20.0, camera, true, 5);
