@@ -3,8 +3,7 @@
 // it, the light falling off about its own centre), then a camera the fit does not model exactly
 // (colour_camera.hpp: vignetting, white balance and colour matrix off, shot and read noise on an RGGB Bayer sensor
 // demosaiced before the tone curve, an S-shaped look curve after the sRGB curve, JPEG 75); the cases are
-// realistic_camera_case.hpp's. The
-// scale is known; the thickness is searched over the whole default range.
+// realistic_camera_case.hpp's. The scale is known; the thickness is searched over the whole default range.
 #include "realistic_camera_case.hpp"
 
 #include <gtest/gtest.h>
