@@ -92,15 +92,33 @@ def _preexec(read_fd, write_fd):
 class Browser:
     """A headless Chromium process driven over the DevTools pipe."""
 
-    def __init__(self, executable=DEFAULT_EXECUTABLE, timeout_s=30):
+    def __init__(self, executable=DEFAULT_EXECUTABLE, timeout_s=30, launch_tries=2, launch_timeout_s=60):
         self.timeout_s = timeout_s
+        self._write_lock = threading.Lock()
+        self._out = None
+        failures = []
+        for _ in range(launch_tries):  # a first start on a busy, fresh machine may hang; start again
+            self._start(executable)
+            try:
+                self._await_first_reply(launch_timeout_s)
+                return
+            except TimeoutError as error:
+                failures.append(str(error))
+                self.close()
+            except Exception:
+                self.close()
+                raise
+        raise TimeoutError(f"Chromium did not answer in {launch_tries} starts of {launch_timeout_s} s each:\n"
+                           + "\n".join(failures))
+
+    def _start(self, executable):
+        """Start the browser with a new profile, log and pipe, and the thread reading its replies."""
         self.events = []  # every event message: method, params, sessionId
         self._listeners = {}  # sessionId -> callable(event), run on the reader thread
         self._replies = {}
         self._next_id = 0
         self._alive = True
         self._cond = threading.Condition()
-        self._write_lock = threading.Lock()
         self._profile = tempfile.mkdtemp(prefix="cdp-profile-")
         self._log = tempfile.NamedTemporaryFile(prefix="cdp-", suffix=".log", delete=False)
         to_child, self._out = os.pipe()
@@ -118,11 +136,16 @@ class Browser:
             os.close(from_child)
         self._reader = threading.Thread(target=self._read_loop, daemon=True)
         self._reader.start()
-        try:
-            self.send("Browser.getVersion")
-        except Exception:
-            self.close()
-            raise
+
+    def _await_first_reply(self, timeout_s):
+        """Ask for the version until the browser answers (a command sent before it reads may be lost)."""
+        deadline = time.monotonic() + timeout_s
+        while True:
+            try:
+                return self.send("Browser.getVersion", timeout_s=min(5, timeout_s))
+            except TimeoutError:
+                if time.monotonic() >= deadline:
+                    raise
 
     def __enter__(self):
         return self
