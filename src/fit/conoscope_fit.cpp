@@ -292,6 +292,46 @@ std::vector<ThicknessMinimum> thickness_minima(const PhotoLevel& level, const st
     return minima;
 }
 
+/// A start of the geometry's refinement: a minimum of the thickness search and the scale it was found at.
+struct SearchStart {
+    double thickness_um, field_radius_px, cost;
+};
+
+/// Whether the crystal has two optic axes: three distinct principal indices (at the middle wavelength).
+bool is_biaxial(const ConoscopePhotoModel& model) {
+    const std::vector<double>& wavelengths = model.settings.wavelengths_nm;
+    Eigen::Vector3d n = model.principal_n(wavelengths[wavelengths.size() / 2]);
+    std::sort(n.begin(), n.end());
+    return std::min(n[1] - n[0], n[2] - n[1]) > 1e-3 * (n[2] - n[0]);
+}
+
+/// The thickness search's lowest `options.candidates` minima. Where the scale is free, no field stop shows it and
+/// the crystal is biaxial, the search runs at five scales a factor √2 apart about the starting one (0.25 … 1 frame
+/// for the default half frame) and keeps the lowest minima of all: the distance between the melatopes fixes the
+/// scale, but a scan at a wrong one puts them at the wrong distance, from where the refinement of the geometry need
+/// not find its way (a 128² aragonite photo through a tangent projection, started at 64 px: 470 µm for 71). A
+/// uniaxial figure hardly fixes its scale (thickness × scale² for a centred one; docs/fitting.md), and there the
+/// scans at other scales only offer equally good minima elsewhere along that line. Scales outside `bounds` are skipped.
+std::vector<SearchStart> search_starts(const PhotoLevel& level, const ConoscopePhotoModel& model, const PhotoParameters& start, double min_um,
+                                       double max_um, const ConoscopeFitOptions& options, const Bounds& bounds) {
+    const std::size_t r = index_of(PhotoParameter::field_radius_px);
+    const bool several_scales = options.free[r] && model.field_stop != FieldStop::sharp && is_biaxial(model);
+    std::vector<SearchStart> starts;
+    for (int step = several_scales ? -2 : 0; step <= (several_scales ? 2 : 0); ++step) {
+        PhotoParameters values = start;
+        const double radius_px = start[r] * std::pow(std::numbers::sqrt2, step);
+        if (step != 0 && (radius_px < bounds.lower[r] || radius_px > bounds.upper[r])) continue;
+        values[r] = radius_px;
+        for (const ThicknessMinimum& minimum :
+             thickness_minima(level, model.rgb_per_transmission, values, min_um, max_um, options.candidates, StepRule::finest_resolved_fringe)) {
+            starts.push_back({minimum.thickness_um, radius_px, minimum.cost});
+        }
+    }
+    std::sort(starts.begin(), starts.end(), [](const SearchStart& a, const SearchStart& b) { return a.cost < b.cost; });
+    if (static_cast<int>(starts.size()) > options.candidates) starts.resize(static_cast<std::size_t>(options.candidates));
+    return starts;
+}
+
 struct Statistics {
     double rms = 0.0, explained_variance = 0.0;
 };
@@ -610,9 +650,7 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
         if (minimum.upper_um < scan_max_um) basin.upper[k] = minimum.upper_um;
         return basin;
     };
-    const std::vector<ThicknessMinimum> starts =
-        thickness_minima(*search, model.rgb_per_transmission, start, scan_min_um, scan_max_um, options.candidates,
-                         StepRule::finest_resolved_fringe);
+    const std::vector<SearchStart> starts = search_starts(*search, model, start, scan_min_um, scan_max_um, options, bounds);
     reached(0.15);
 
     // The small corrections of the optics (distortion, the analyzer's offset and leak) and of the camera's
@@ -631,6 +669,7 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
     for (std::size_t k = 0; k < starts.size(); ++k) {
         PhotoParameters values = start;
         at(values, PhotoParameter::thickness_um) = starts[k].thickness_um;
+        at(values, PhotoParameter::field_radius_px) = starts[k].field_radius_px;
         const double cost = solve_level(*coarse, values, polars_held, bounds, 30, 1e-6, result.iterations, relay, geometry_cost);
         if (cost < geometry_cost) {
             geometry_cost = cost;

@@ -61,16 +61,20 @@ inline CameraCase random_case(int index, int size_px) {
     return c;
 }
 
-/// A photo of case `c` (number `index`, which seeds its noise) and what the fit is told of it: the scale known,
-/// the thickness searched over the default range, every other term free but the field radius, tilt,
-/// distortion and polars.
 struct CameraCasePhoto {
     ConoscopePhotoModel model;
     Image photo;
     ConoscopeFitOptions options;
 };
 
-inline CameraCasePhoto photograph_case(int index, const CameraCase& c, int size_px) {
+/// Whether the fit is told the scale (the field radius), or starts it where it starts for a user who does not know
+/// it (default_photo_parameters: half the frame) and fits it.
+enum class Scale { known, unknown };
+
+/// A photo of case `c` (number `index`, which seeds its noise) and what the fit is told of it: the thickness
+/// searched over the default range, every other term free but the tilt, distortion and polars, and the field radius
+/// unless `scale` is unknown.
+inline CameraCasePhoto photograph_case(int index, const CameraCase& c, int size_px, Scale scale = Scale::known) {
     static const PhotoLight light = white_light();
     CameraCasePhoto shot{photo_model(fit_minerals().find(c.mineral.mineral), c.mineral.cut), {}, {}};
     cv::Mat linear = light_through_optics(shot.model, light, c.optics, size_px);
@@ -82,6 +86,10 @@ inline CameraCasePhoto photograph_case(int index, const CameraCase& c, int size_
     for (const PhotoParameter fixed : {PhotoParameter::field_radius_px, PhotoParameter::tilt_deg, PhotoParameter::azimuth_deg,
                                        PhotoParameter::distortion, PhotoParameter::analyzer_offset_deg, PhotoParameter::extinction_ratio}) {
         shot.options.free[index_of(fixed)] = false;
+    }
+    if (scale == Scale::unknown) {
+        shot.options.free[index_of(PhotoParameter::field_radius_px)] = true;
+        at(shot.options.initial, PhotoParameter::field_radius_px) = at(default_photo_parameters(size_px, size_px), PhotoParameter::field_radius_px);
     }
     return shot;
 }
