@@ -315,12 +315,12 @@ bool is_biaxial(const ConoscopePhotoModel& model) {
 std::vector<SearchStart> search_starts(const PhotoLevel& level, const ConoscopePhotoModel& model, const PhotoParameters& start, double min_um,
                                        double max_um, const ConoscopeFitOptions& options, const Bounds& bounds) {
     const std::size_t r = index_of(PhotoParameter::field_radius_px);
-    const bool several_scales = options.free[r] && model.field_stop != FieldStop::sharp && is_biaxial(model);
+    const int steps = options.free[r] && model.field_stop != FieldStop::sharp && is_biaxial(model) ? 2 : 0;  // each way
     std::vector<SearchStart> starts;
-    for (int step = several_scales ? -2 : 0; step <= (several_scales ? 2 : 0); ++step) {
-        PhotoParameters values = start;
+    for (int step = -steps; step <= steps; ++step) {
         const double radius_px = start[r] * std::pow(std::numbers::sqrt2, step);
         if (step != 0 && (radius_px < bounds.lower[r] || radius_px > bounds.upper[r])) continue;
+        PhotoParameters values = start;
         values[r] = radius_px;
         for (const ThicknessMinimum& minimum :
              thickness_minima(level, model.rgb_per_transmission, values, min_um, max_um, options.candidates, StepRule::finest_resolved_fringe)) {
