@@ -51,7 +51,7 @@ const std::map<std::string, std::vector<PhotoParameter>>& free_groups() {
 
 struct FitOptions {
     std::string photo, mineral = "muscovite", cut, thickness, thickness_range, output_dir, handedness = "right";
-    std::string projection = "sine", field_stop = "sharp", illumination = "even";
+    std::string projection = "sine", field_stop = "sharp", illumination = "even", sensor = "auto";
     std::string free = "thickness,center,scale,rotation,white-balance,black,gamma,blur";
     std::vector<std::string> fixed;
     double azimuth_deg = 0.0, tilt_deg = 0.0, na = 0.85, polarizer_deg = 0.0, analyzer_deg = 90.0, surround_n = 1.54;
@@ -84,6 +84,7 @@ nlohmann::json report_json(const ConoscopeFitResult& result, const FitOptions& o
         nlohmann::json entry = fitted_value_json(value);
         entry["initial"] = fit_options.initial[static_cast<std::size_t>(j)];
         if (result.encoding_shift && value.free) entry["encoding_shift"] = (*result.encoding_shift)[static_cast<std::size_t>(j)];
+        if (result.mosaic_shift && value.free) entry["mosaic_shift"] = (*result.mosaic_shift)[static_cast<std::size_t>(j)];
         parameters[std::string(photo_parameter_name(static_cast<PhotoParameter>(j)))] = entry;
     }
     nlohmann::json candidates = nlohmann::json::array();
@@ -105,6 +106,7 @@ nlohmann::json report_json(const ConoscopeFitResult& result, const FitOptions& o
             {"projection", options.projection},
             {"field_stop", options.field_stop},
             {"illumination", options.illumination},
+            {"sensor", colour_sensor_name(fit_options.sensor)},
             {"thickness_search_um", {fit_options.thickness_min_um, fit_options.thickness_max_um}},
             {"acceptable", result.acceptable},
             {"verdict", result.verdict},
@@ -122,7 +124,8 @@ nlohmann::json report_json(const ConoscopeFitResult& result, const FitOptions& o
                       "local fringe approximation; see docs/fitting.md"},
             {"sigma_meaning", "1 sigma from the Gauss-Newton covariance (J^T J)^+ with a cluster-robust (sandwich) correction over blocks of the field; "
                               "for a checked JPEG photo, plus encoding_shift in quadrature (the shift when the best fit is encoded "
-                              "as the photo was and fitted again)"}};
+                              "as the photo was and fitted again), and with a Bayer sensor plus mosaic_shift (the same through an "
+                              "RGGB mosaic and bilinear demosaicing)"}};
 }
 
 std::string shown(double value) { return format_significant(value, 6); }
@@ -186,6 +189,8 @@ void run_fit_conoscope(const FitOptions& options, const std::string& minerals_di
     if (jpeg && !options.no_encoding_check) {
         fit.photo_encoding = [encoding = *jpeg](const Image& camera_values) { return encode_like_jpeg(camera_values, encoding); };
     }
+    // A JPEG is a camera's photo, and nearly every colour camera has a Bayer sensor; PNG and TIFF may be rendered.
+    fit.sensor = options.sensor == "auto" ? (jpeg ? ColourSensor::bayer : ColourSensor::full_colour) : parse_colour_sensor(options.sensor);
 
     // Reserve every output before the work starts: an unwritable folder fails at once, nothing half-written.
     const std::filesystem::path folder(options.output_dir);
@@ -243,6 +248,10 @@ void run_fit_conoscope(const FitOptions& options, const std::string& minerals_di
                           << ", the nearest encoding it can write\n";
             }
         }
+        if (result.mosaic_shift) {
+            std::cout << "  Bayer sensor (--sensor bayer): its demosaicing, checked, shifts the thickness by " << shown((*result.mosaic_shift)[0])
+                      << " um, included in its 1 sigma\n";
+        }
         for (const auto& warning : result.warnings) std::cout << "warning: " << warning << '\n';
         std::cout << "wrote " << (folder / "report.json").string() << ", model.png, side_by_side.png, residual.tiff (" << shown(seconds) << " s)\n";
     });
@@ -290,6 +299,12 @@ void add_fit_command(CLI::App& app, const std::string& minerals_dir) {
     conoscope->add_flag("--no-encoding-check", options->no_encoding_check,
                         "For a JPEG photo: skip repeating its encoding on the best fit (faster; the 1-sigma values then leave out\n"
                         "the encoding's systematic error)");
+    conoscope->add_option("--sensor", options->sensor,
+                          "The camera's sensor: bayer (a colour mosaic, demosaiced: nearly every colour camera; the fit measures what\n"
+                          "the demosaicing does to its result and adds it to the 1-sigma values), full-colour (every colour at every\n"
+                          "pixel: a rendered photo), or auto: bayer for a JPEG photo, full-colour otherwise")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"auto", "bayer", "full-colour"}));
     add_light_options(conoscope, options->light);
     add_fit_output_options(conoscope, options->output_dir, options->json);
     conoscope->callback([options, &minerals_dir] { run_fit_conoscope(*options, minerals_dir); });

@@ -193,6 +193,7 @@ def fit_conoscope(
     projection: str = "sine",
     field_stop: str = "sharp",
     illumination: str = "even",
+    sensor: str = "full-colour",
     progress: Progress = None,
     verbose: bool = False,
 ) -> dict[str, object]: ...

@@ -49,6 +49,15 @@ py::dict fit_result_dict(const ConoscopeFitResult& result, Image model_photo) {
                     py::arg("explained_variance") = result.explained_variance, py::arg("pixels_used") = result.pixels_used,
                     py::arg("pixels_saturated") = result.pixels_saturated, py::arg("iterations") = result.iterations,
                     py::arg("candidates") = candidates, py::arg("warnings") = result.warnings));
+    report["mosaic_shift"] = py::none();
+    if (result.mosaic_shift) {
+        py::dict shift;
+        for (int j = 0; j < kPhotoParameterCount; ++j) {
+            const auto k = static_cast<std::size_t>(j);
+            if (result.parameters[k].free) shift[py::str(std::string(photo_parameter_name(static_cast<PhotoParameter>(j))))] = (*result.mosaic_shift)[k];
+        }
+        report["mosaic_shift"] = shift;
+    }
     report["model"] = to_numpy(model_photo);
     return report;
 }
@@ -58,7 +67,7 @@ py::dict fit_conoscope(const py::array& photo_array, const std::string& mineral,
                        std::optional<std::pair<double, double>> thickness_range_um, double tilt_deg, double azimuth_deg,
                        const std::vector<std::string>& free, const std::map<std::string, double>& fixed, int candidates,
                        const std::string& handedness, const std::string& projection, const std::string& field_stop,
-                       const std::string& illumination, const py::object& progress, bool verbose) {
+                       const std::string& illumination, const std::string& sensor, const py::object& progress, bool verbose) {
     const Image photo = image_argument(photo_array, "photo");
     show_solver_messages(verbose);
     const ConoscopePhotoSetup setup{.cut = cut ? std::optional(parse_cut(*cut)) : std::nullopt, .light = light_argument(light),
@@ -73,6 +82,7 @@ py::dict fit_conoscope(const py::array& photo_array, const std::string& mineral,
     at(options.initial, PhotoParameter::azimuth_deg) = azimuth_deg;
     set_thickness_search(options, thickness_um, thickness_range_um);
     options.candidates = candidates;
+    options.sensor = parse_colour_sensor(sensor);
     options.free.fill(false);
     for (const std::string& name : free) options.free[static_cast<std::size_t>(parse_photo_parameter(name))] = true;
     free_envelope_with_falloff(options, model);
@@ -265,7 +275,7 @@ void bind_fit(py::module_& module) {
                py::arg("thickness_range_um") = py::none(), py::arg("tilt_deg") = 0.0, py::arg("azimuth_deg") = 0.0,
                py::arg("free") = default_free, py::arg("fixed") = std::map<std::string, double>{}, py::arg("candidates") = 3,
                py::arg("handedness") = "right", py::arg("projection") = "sine", py::arg("field_stop") = "sharp",
-               py::arg("illumination") = "even", py::arg("progress") = py::none(), py::arg("verbose") = false,
+               py::arg("illumination") = "even", py::arg("sensor") = "full-colour", py::arg("progress") = py::none(), py::arg("verbose") = false,
                R"(Fits a photo of a conoscopic figure: the slab's thickness, the figure's centre, scale and rotation,
 the cut's tilt, the camera's gains, black level, gamma and blur (docs/fitting.md).
 
@@ -283,14 +293,17 @@ free: the parameters fitted, by name (thickness_um, center_x_px, center_y_px, fi
 projection: 'sine' (a microscope objective), 'tangent' (a camera or lens looking through the crystal, a
   figure on a screen) or 'equidistant'. field_stop: 'sharp' (the objective's aperture edge) or 'none'
   (the frame and the light's falloff bound the field). illumination: 'even' or 'falloff' (the light
-  falls off as exp(-(r/R)^p) about its own centre, fitted).
+  falls off as exp(-(r/R)^p) about its own centre, fitted). sensor: 'full-colour' (every colour at every
+  pixel: a rendered photo) or 'bayer' (a colour camera's mosaic, demosaiced: the fit measures what the
+  demosaicing does to its result and adds it to each 1 sigma).
 progress: called with the fraction done; return False to cancel. Ctrl-C cancels.
 verbose: the solver's (Ceres's) messages and its progress per iteration on standard error; off, it prints
   nothing (as the command line without --verbose).
 
 Returns a dict: values, sigma (1 sigma, None where fixed or not determined), free, identifiable (by
 name); acceptable and verdict; rms_residual, explained_variance, pixels_used, pixels_saturated,
-iterations, candidates, warnings; model: the best fit's photo (float32, like photo). A photo given as an
+iterations, candidates, warnings; mosaic_shift: with sensor='bayer', each free parameter's shift when the
+best fit goes through the mosaic and is fitted again (None otherwise); model: the best fit's photo (float32, like photo). A photo given as an
 array carries no JPEG encoding: its systematic error is not checked (the command line's fit checks it).)");
     module.def("fit_orthoscope", &fit_orthoscope, py::arg("photos"), py::kw_only(), py::arg("mineral"), py::arg("stage_deg") = 0.0,
                py::arg("plate") = py::none(), py::arg("plate_slow_deg") = 45.0, py::arg("mask") = py::none(), py::arg("region") = py::none(),

@@ -12,11 +12,15 @@ def camera_photo(thickness_um, size_px=96):
 
 
 def test_the_thickness_comes_back_within_one_percent_and_two_sigma():
-    fit = petroscope.fit_conoscope(camera_photo(40.0), mineral="muscovite", thickness_um=30.0, fixed={"field_radius_px": 48.0})
+    # Checked as a Bayer sensor's photo: the demosaicing's shift is measured and joins the 1 sigma.
+    fit = petroscope.fit_conoscope(camera_photo(40.0), mineral="muscovite", thickness_um=30.0, fixed={"field_radius_px": 48.0}, sensor="bayer")
     assert fit["acceptable"], fit["verdict"]
     thickness, sigma = fit["values"]["thickness_um"], fit["sigma"]["thickness_um"]
     assert abs(thickness - 40.0) < 0.4  # 1%
     assert sigma is not None and abs(thickness - 40.0) <= 2 * sigma
+    shift = fit["mosaic_shift"]
+    assert set(shift) == {name for name, free in fit["free"].items() if free}
+    assert 0.0 < abs(shift["thickness_um"]) <= sigma
     assert fit["free"]["thickness_um"] and not fit["free"]["field_radius_px"]
     assert fit["model"].shape == (96, 96, 3)
 
@@ -34,6 +38,7 @@ def test_light_that_falls_off_is_fitted_with_the_figure():
     assert fit["free"]["envelope_radius_px"]
     assert abs(values["envelope_center_x_px"] - 52.0) < 2.0 and abs(values["envelope_center_y_px"] - 44.0) < 2.0
     assert abs(values["envelope_radius_px"] - 40.0) < 4.0
+    assert fit["mosaic_shift"] is None  # a full-colour sensor, the default: nothing to check
 
 
 def test_bad_photos_and_arguments_are_refused():
@@ -47,6 +52,8 @@ def test_bad_photos_and_arguments_are_refused():
         petroscope.fit_conoscope(camera_photo(40.0, 64), thickness_um=-3.0)
     with pytest.raises(ValueError, match="unknown projection 'fisheye'"):
         petroscope.fit_conoscope(camera_photo(40.0, 64), projection="fisheye")
+    with pytest.raises(ValueError, match="unknown colour sensor 'rgb' \\(expected one of full-colour, bayer\\)"):
+        petroscope.fit_conoscope(camera_photo(40.0, 64), sensor="rgb")
     with pytest.raises(ValueError, match="extinction_ratio = 1.5 is outside 0 ... 0.2"):
         petroscope.fit_conoscope(camera_photo(40.0, 64), fixed={"extinction_ratio": 1.5})
     with pytest.raises(ValueError, match="illumination is even"):

@@ -1,5 +1,6 @@
 #include "petroscope/fit/conoscope_fit.hpp"
 
+#include "bayer_mosaic.hpp"
 #include "cancel_between_iterations.hpp"
 #include "figure_location.hpp"
 #include "photo_cost.hpp"
@@ -351,6 +352,17 @@ Statistics residual_statistics(const PhotoLevel& level, const PhotoCost& cost, c
     return {std::sqrt(squared / (3.0 * n)), total > 0.0 ? 1.0 - squared / total : 0.0};
 }
 
+/// The squares of the systematic shifts of one quantity (`of` reads it from a shift): the encoding's and the
+/// mosaic's, independent errors added in quadrature; 0 where neither was checked.
+template <typename Quantity>
+double systematic_variance(const ConoscopeFitResult& result, const Quantity& of) {
+    double variance = 0.0;
+    for (const std::optional<PhotoParameters>* shift : {&result.encoding_shift, &result.mosaic_shift}) {
+        if (*shift) variance += of(**shift) * of(**shift);
+    }
+    return variance;
+}
+
 /// 1σ from the covariance C = (JᵀJ)⁺ made robust to residuals that are correlated over the photo
 /// (blur, JPEG blocks, what the model leaves out): the cluster sandwich C·(Σ_b g_b g_bᵀ)·C with
 /// g_b = J_bᵀr_b summed over square blocks of the field (Liang & Zeger 1986; Cameron & Miller 2015, eq. 11),
@@ -431,8 +443,7 @@ void uncertainties(const PhotoCost& cost, const PhotoLevel& level, ConoscopeFitR
         fitted.value = result.values[k];
         fitted.free = options.free[k];
         if (!fitted.free) continue;
-        const double encoding_shift = result.encoding_shift ? (*result.encoding_shift)[k] : 0.0;
-        const double variance_j = sandwich(j, j) + encoding_shift * encoding_shift;
+        const double variance_j = sandwich(j, j) + systematic_variance(result, [k](const PhotoParameters& shift) { return shift[k]; });
         const double sigma = variance_j >= 0.0 ? std::sqrt(variance_j) : std::numeric_limits<double>::infinity();
         double limit = kUnidentifiedSigma[k];
         if (j == static_cast<int>(PhotoParameter::thickness_um)) limit *= fitted.value;
@@ -473,10 +484,10 @@ void uncertainties(const PhotoCost& cost, const PhotoLevel& level, ConoscopeFitR
         // from the same covariance (var ln(d/r²) = var d/d² + 4 var r/r² − 4 cov(d, r)/(d·r)).
         const std::size_t d = index_of(PhotoParameter::thickness_um), r = index_of(PhotoParameter::field_radius_px);
         const double thickness_um = result.values[d], radius_px = result.values[r];
-        // The encoding's shift of each adds in quadrature, as for every parameter.
-        const double encoding_shift = result.encoding_shift ? (*result.encoding_shift)[d] / thickness_um - 2.0 * (*result.encoding_shift)[r] / radius_px : 0.0;
-        const double relative_variance = sandwich(d, d) / (thickness_um * thickness_um) + 4.0 * sandwich(r, r) / (radius_px * radius_px) -
-                                         4.0 * sandwich(d, r) / (thickness_um * radius_px) + encoding_shift * encoding_shift;
+        // The systematic shifts of the combination add in quadrature, as for every parameter.
+        const double relative_variance =
+            sandwich(d, d) / (thickness_um * thickness_um) + 4.0 * sandwich(r, r) / (radius_px * radius_px) - 4.0 * sandwich(d, r) / (thickness_um * radius_px) +
+            systematic_variance(result, [&](const PhotoParameters& shift) { return shift[d] / thickness_um - 2.0 * shift[r] / radius_px; });
         const double ratio = thickness_um / (radius_px * radius_px);
         const std::string sigma = relative_variance >= 0.0 ? " +- " + format_significant(ratio * std::sqrt(relative_variance), 3) : "";
         result.warnings.push_back("the thickness is not determined: a centred uniaxial figure fixes only thickness x scale^2 (the ring "
@@ -586,8 +597,12 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
     }
     PhotoParameters start = options.initial;
     const bool centre_free = options.free[index_of(PhotoParameter::center_x_px)] && options.free[index_of(PhotoParameter::center_y_px)];
-    const bool untilted = at(start, PhotoParameter::tilt_deg) == 0.0 && !options.free[index_of(PhotoParameter::tilt_deg)];
-    if (options.locate_centre && centre_free && untilted) {
+    // An untilted cut's figure is symmetric under a half turn about its centre. A cut tilted a little (the tilt free
+    // from 0) shows nearly that figure moved, and without a field stop to fix the projection's centre the untilted
+    // start is best placed where the figure is; with one, the stop's centre is the projection's.
+    const bool tilt_free = options.free[index_of(PhotoParameter::tilt_deg)];
+    const bool symmetric_start = at(start, PhotoParameter::tilt_deg) == 0.0 && (!tilt_free || model.field_stop == FieldStop::none);
+    if (options.locate_centre && centre_free && symmetric_start) {
         if (const std::optional<Eigen::Vector2d> located = detail::half_turn_symmetry_centre_px(photo)) {
             at(start, PhotoParameter::center_x_px) = located->x();
             at(start, PhotoParameter::center_y_px) = located->y();
@@ -723,13 +738,14 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
               [](const ThicknessCandidate& a, const ThicknessCandidate& b) { return a.cost < b.cost; });
     reached(0.95);
 
-    // One cost on the fine level for the encoding check, the uncertainties and the statistics: the figure's
+    // One cost on the fine level for the checks, the uncertainties and the statistics: the figure's
     // terms at the best fit's geometry are computed once and kept by it.
     const PhotoCost cost(*fine, options.free, options.robust_scale);
-    if (options.photo_encoding) {
-        // The encoding's systematic error: the best-fit model's photo, encoded as the photo was, fitted
-        // again from the best fit on the same samples (a parametric bootstrap without noise; Efron &
-        // Tibshirani 1993, §10.6). Without the encoding this refit returns the best fit itself.
+    // The systematic errors of what the camera did that the model does not follow: the best-fit model's photo,
+    // altered as the photo was, fitted again from the best fit on the same samples (a parametric bootstrap
+    // without noise; Efron & Tibshirani 1993, §10.6). Unaltered, this refit returns the best fit itself.
+    const bool bayer = options.sensor == ColourSensor::bayer;
+    if (options.photo_encoding || bayer) {
         Image best_fit = render_photo_on_lattices(model, result.values, photo.width, photo.height, centre, fine->evaluator.lattice().stride_px);
         // The fine level's own samples exactly as the fit matched them (at the sampled area's edge its
         // derivatives are one-sided).
@@ -738,14 +754,20 @@ ConoscopeFitResult fit_conoscope_photo(const Image& photo_in, const ConoscopePho
             const Eigen::Vector2d& pixel = fine->evaluator.lattice().pixels[k];
             for (int c = 0; c < 3; ++c) best_fit.at(static_cast<int>(pixel.x()), static_cast<int>(pixel.y()), c) = static_cast<float>(matched[k][c]);
         }
-        const Image encoded = options.photo_encoding(best_fit);
-        const detail::PhotoLevel encoded_level(terms_model, fine->evaluator.lattice(), encoded, 0.0,
-                                               at(start, PhotoParameter::gamma), options.saturated_level);
-        PhotoParameters refitted = result.values;
-        solve_level(encoded_level, refitted, options, final_bounds, 40, converged_fraction(encoded_level), result.iterations, relay);
-        PhotoParameters shift{};
-        for (std::size_t k = 0; k < shift.size(); ++k) shift[k] = refitted[k] - result.values[k];
-        result.encoding_shift = shift;
+        const auto shift_when_fitted = [&](const Image& altered) {
+            const detail::PhotoLevel altered_level(terms_model, fine->evaluator.lattice(), altered, 0.0, at(start, PhotoParameter::gamma),
+                                                   options.saturated_level);
+            PhotoParameters refitted = result.values;
+            solve_level(altered_level, refitted, options, final_bounds, 40, converged_fraction(altered_level), result.iterations, relay);
+            PhotoParameters shift{};
+            for (std::size_t k = 0; k < shift.size(); ++k) shift[k] = refitted[k] - result.values[k];
+            return shift;
+        };
+        if (options.photo_encoding) result.encoding_shift = shift_when_fitted(options.photo_encoding(best_fit));
+        if (bayer) {
+            result.mosaic_shift = shift_when_fitted(
+                detail::through_bayer_mosaic(best_fit, at(result.values, PhotoParameter::black_level), at(result.values, PhotoParameter::gamma)));
+        }
     }
     reached(0.98);
 

@@ -1,4 +1,4 @@
-// The names of the photo model's closed sets (projection, field stop, illumination), as the CLI, Python and
+// The names of the photo model's closed sets (projection, field stop, illumination, colour sensor), as the CLI, Python and
 // report.json spell them.
 #include "petroscope/fit/conoscope_fit.hpp"
 
@@ -19,6 +19,7 @@ constexpr NameTable<Projection, 3> kProjections{{{Projection::sine, "sine"}, {Pr
                                                  {Projection::equidistant, "equidistant"}}};
 constexpr NameTable<FieldStop, 2> kFieldStops{{{FieldStop::sharp, "sharp"}, {FieldStop::none, "none"}}};
 constexpr NameTable<IlluminationProfile, 2> kIlluminations{{{IlluminationProfile::even, "even"}, {IlluminationProfile::falloff, "falloff"}}};
+constexpr NameTable<ColourSensor, 2> kColourSensors{{{ColourSensor::full_colour, "full-colour"}, {ColourSensor::bayer, "bayer"}}};
 
 template <typename Enum, std::size_t N>
 std::string_view name_in(const NameTable<Enum, N>& table, Enum value) {
@@ -46,5 +47,7 @@ std::string_view field_stop_name(FieldStop stop) { return name_in(kFieldStops, s
 FieldStop parse_field_stop(std::string_view name) { return parse_in(kFieldStops, name, "field stop"); }
 std::string_view illumination_name(IlluminationProfile illumination) { return name_in(kIlluminations, illumination); }
 IlluminationProfile parse_illumination(std::string_view name) { return parse_in(kIlluminations, name, "illumination"); }
+std::string_view colour_sensor_name(ColourSensor sensor) { return name_in(kColourSensors, sensor); }
+ColourSensor parse_colour_sensor(std::string_view name) { return parse_in(kColourSensors, name, "colour sensor"); }
 
 }  // namespace petroscope

@@ -7,6 +7,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include <algorithm>
+#include <cmath>
 
 namespace petroscope {
 namespace {
@@ -39,11 +40,14 @@ TEST_F(FitCli, RenderedFigureFitsBackWithReportAndImages) {
     EXPECT_FALSE(report["candidates"].empty());
     EXPECT_EQ(report["photo_encoding"], "none (lossless)");
     EXPECT_FALSE(thickness.contains("encoding_shift"));
+    EXPECT_EQ(report["sensor"], "full-colour");  // --sensor auto: a PNG may be rendered
+    EXPECT_FALSE(thickness.contains("mosaic_shift"));
     EXPECT_NE(run.out.find("thickness_um = "), std::string::npos);
 }
 
-// A JPEG photo: the report names its encoding, and the fit checks the encoding's systematic error
-// (docs/fitting.md); the 1σ includes the shift, unless the check is switched off.
+// A JPEG photo: the report names its encoding, and the fit checks the encoding's systematic error and, the photo
+// being a camera's (--sensor auto), its Bayer sensor's (docs/fitting.md); the 1σ includes both shifts in quadrature,
+// unless the checks are switched off.
 TEST_F(FitCli, JpegPhotoReportsItsEncodingAndItsShift) {
     const auto png = quartz_photo();
     const std::filesystem::path jpeg = scratch() / "photo.jpg";
@@ -58,18 +62,24 @@ TEST_F(FitCli, JpegPhotoReportsItsEncodingAndItsShift) {
     EXPECT_TRUE(report["photo_encoding"]["repeated_exactly"].get<bool>());
     const nlohmann::json& thickness = report["parameters"]["thickness_um"];
     ASSERT_TRUE(thickness.contains("encoding_shift"));
-    const double shift = thickness["encoding_shift"].get<double>();
-    EXPECT_GE(thickness["sigma"].get<double>(), std::abs(shift));
+    EXPECT_EQ(report["sensor"], "bayer");
+    ASSERT_TRUE(thickness.contains("mosaic_shift"));
+    const double shift = thickness["encoding_shift"].get<double>(), mosaic_shift = thickness["mosaic_shift"].get<double>();
+    EXPECT_GE(thickness["sigma"].get<double>(), std::hypot(shift, mosaic_shift) * (1.0 - 1e-12));
+    EXPECT_NE(mosaic_shift, 0.0);
     EXPECT_NEAR(thickness["value"].get<double>(), 400.0, 4.0);
     EXPECT_NE(run.out.find("JPEG photo (quality 90, 4:2:0): checked"), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find("Bayer sensor (--sensor bayer): its demosaicing, checked, shifts the thickness by"), std::string::npos) << run.out;
 
     const testing::CommandResult unchecked =
         petroscope("fit conoscope --photo " + testing::quoted(jpeg) + " --mineral quartz --thickness 250um --fix field_radius_px=32 "
-                   "--no-encoding-check -o " + testing::quoted(out()));
+                   "--no-encoding-check --sensor full-colour -o " + testing::quoted(out()));
     ASSERT_EQ(unchecked.exit_code, 0) << unchecked.out << unchecked.err;
     const nlohmann::json plain = nlohmann::json::parse(testing::read_text(out() / "report.json"));
     EXPECT_FALSE(plain["photo_encoding"]["checked"].get<bool>());
     EXPECT_FALSE(plain["parameters"]["thickness_um"].contains("encoding_shift"));
+    EXPECT_EQ(plain["sensor"], "full-colour");
+    EXPECT_FALSE(plain["parameters"]["thickness_um"].contains("mosaic_shift"));
     EXPECT_NE(unchecked.out.find("not checked"), std::string::npos) << unchecked.out;
 
 }
@@ -92,6 +102,7 @@ TEST_F(FitCli, BadPhotosAndOptionsAreRefused) {
                     {"--projection", "'fisheye'", "sine, tangent, equidistant"});
     expect_rejected("fit conoscope --photo " + testing::quoted(photo) + tail + " --field-stop soft", {"--field-stop", "'soft'", "sharp, none"});
     expect_rejected("fit conoscope --photo " + testing::quoted(photo) + tail + " --illumination dim", {"--illumination", "'dim'", "even, falloff"});
+    expect_rejected("fit conoscope --photo " + testing::quoted(photo) + tail + " --sensor rgb", {"--sensor", "rgb", "auto", "bayer", "full-colour"});
     expect_rejected("fit conoscope --photo " + testing::quoted(photo) + tail + " --illumination falloff --fix envelope_radius_px=0",
                     {"envelope_radius_px = 0", "outside"});
     expect_rejected("fit conoscope --photo " + testing::quoted(photo) + tail + " --fix extinction_ratio=1.5", {"extinction_ratio = 1.5", "0 ... 0.2"});

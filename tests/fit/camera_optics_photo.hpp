@@ -23,6 +23,7 @@ struct OpticsTruth {
     double center_dx_px = 0.0, center_dy_px = 0.0;  // the figure's centre from the frame's
     double field_radius_px = 60.0;                  // where the photo shows the direction of sin θ_air = NA
     double rotation_deg = 0.0;
+    double tilt_deg = 0.0, azimuth_deg = 0.0;  // the cut's direction tilted away from the microscope axis
     double distortion = 0.0;
     double envelope_dx_px = 0.0, envelope_dy_px = 0.0;  // the light's centre from the frame's
     double envelope_radius_px = 80.0, envelope_power = 2.0;
@@ -86,7 +87,7 @@ inline cv::Mat light_through_optics(const ConoscopePhotoModel& model, const Phot
     const double xi_per_px = 1.1 * std::tan(std::asin(na)) / truth.field_radius_px;
     settings.size_px = std::clamp(static_cast<int>(std::ceil(3.0 * 2.0 * settings.numerical_aperture / xi_per_px)), 64, 4096);
     settings.thickness_um = truth.thickness_um;
-    settings.crystal_axes = model.orientation(0.0, 0.0);
+    settings.crystal_axes = model.orientation(truth.tilt_deg, truth.azimuth_deg);
     // A camera turned by ρ sees polarizers and crystal turned by ρ; the analyzer is off by its offset, and
     // the light it should block is the figure with the analyzer a further 90° on.
     settings.polarizer_deg += truth.rotation_deg;

@@ -61,6 +61,15 @@ inline CameraCase random_case(int index, int size_px) {
     return c;
 }
 
+/// Case `c` (number `index`) with its cut tilted by 2 … 8° toward a random azimuth, drawn apart from the case's own
+/// numbers so that the rest of the case stays as it is.
+inline CameraCase tilted_case(int index, CameraCase c) {
+    std::mt19937_64 rng(5000 + static_cast<unsigned>(index));
+    c.optics.tilt_deg = 2.0 + 6.0 * uniform_unit_interval(rng);
+    c.optics.azimuth_deg = 360.0 * uniform_unit_interval(rng);
+    return c;
+}
+
 struct CameraCasePhoto {
     ConoscopePhotoModel model;
     Image photo;
@@ -71,10 +80,13 @@ struct CameraCasePhoto {
 /// it (default_photo_parameters: half the frame) and fits it.
 enum class Scale { known, unknown };
 
+/// Whether the fit holds the cut's tilt at 0 or fits it (and its azimuth) from 0.
+enum class Tilt { held, free };
+
 /// A photo of case `c` (number `index`, which seeds its noise) and what the fit is told of it: the thickness
-/// searched over the default range, every other term free but the tilt, distortion and polars, and the field radius
-/// unless `scale` is unknown.
-inline CameraCasePhoto photograph_case(int index, const CameraCase& c, int size_px, Scale scale = Scale::known) {
+/// searched over the default range, every other term free but the distortion and polars, the field radius unless
+/// `scale` is unknown and the tilt unless `tilt` is free.
+inline CameraCasePhoto photograph_case(int index, const CameraCase& c, int size_px, Scale scale = Scale::known, Tilt tilt = Tilt::held) {
     static const PhotoLight light = white_light();
     CameraCasePhoto shot{photo_model(fit_minerals().find(c.mineral.mineral), c.mineral.cut), {}, {}};
     cv::Mat linear = light_through_optics(shot.model, light, c.optics, size_px);
@@ -82,6 +94,7 @@ inline CameraCasePhoto photograph_case(int index, const CameraCase& c, int size_
     std::vector<std::uint8_t> jpeg_file;
     shot.photo = c.camera.photograph(linear, 7 + static_cast<unsigned>(index), &jpeg_file);
     shot.options = real_optics_fit(shot.model, c.optics, jpeg_file, size_px);
+    shot.options.sensor = ColourSensor::bayer;  // the camera's, as the command line assumes for a JPEG photo
     shot.options.free.fill(true);
     for (const PhotoParameter fixed : {PhotoParameter::field_radius_px, PhotoParameter::tilt_deg, PhotoParameter::azimuth_deg,
                                        PhotoParameter::distortion, PhotoParameter::analyzer_offset_deg, PhotoParameter::extinction_ratio}) {
@@ -90,6 +103,9 @@ inline CameraCasePhoto photograph_case(int index, const CameraCase& c, int size_
     if (scale == Scale::unknown) {
         shot.options.free[index_of(PhotoParameter::field_radius_px)] = true;
         at(shot.options.initial, PhotoParameter::field_radius_px) = at(default_photo_parameters(size_px, size_px), PhotoParameter::field_radius_px);
+    }
+    if (tilt == Tilt::free) {
+        for (const PhotoParameter p : {PhotoParameter::tilt_deg, PhotoParameter::azimuth_deg}) shot.options.free[index_of(p)] = true;
     }
     return shot;
 }

@@ -28,8 +28,8 @@ struct CaseOutcome {
 };
 
 /// Photographs and fits `c`, prints its figures on one line, and says how it went.
-CaseOutcome photograph_and_fit(int index, const testing::CameraCase& c, int size_px, testing::Scale scale) {
-    const testing::CameraCasePhoto shot = testing::photograph_case(index, c, size_px, scale);
+CaseOutcome photograph_and_fit(int index, const testing::CameraCase& c, int size_px, testing::Scale scale, testing::Tilt tilt) {
+    const testing::CameraCasePhoto shot = testing::photograph_case(index, c, size_px, scale, tilt);
     const auto started = std::chrono::steady_clock::now();
     const ConoscopeFitResult result = fit_conoscope_photo(shot.photo, shot.model, shot.options);
     CaseOutcome outcome;
@@ -45,11 +45,13 @@ CaseOutcome photograph_and_fit(int index, const testing::CameraCase& c, int size
     outcome.biaxial = c.mineral.cut != Cut::optic_axis;
     const testing::ColourCamera& camera = c.camera;
     std::printf("case %2d: %-11s %8.2f um, %-7s %s: fitted %9.3f um +- %.3g, error %+7.3f%% (%+.2f sigma), R2 %.3f, %s; centre (%+.1f, %+.1f) "
-                "px for (%+.1f, %+.1f); R %.1f for %.1f; blur %.2f px for %.2f; camera: white balance (%.2f, %.2f, %.2f), look %.2f, vignetting %.2f; %.1f s\n",
+                "px for (%+.1f, %+.1f); R %.1f for %.1f; tilt %.2f deg toward %.0f for %.2f toward %.0f; blur %.2f px for %.2f; camera: white balance "
+                "(%.2f, %.2f, %.2f), look %.2f, vignetting %.2f; %.1f s\n",
                 index, c.mineral.mineral, truth_um, std::string(projection_name(c.optics.projection)).c_str(), c.centred ? "centred   " : "off-centre",
                 thickness.value, sigma, 100.0 * error / truth_um, error / sigma, result.explained_variance,
                 outcome.accepted ? "accepted" : ("refused: " + result.verdict).c_str(), at(result.values, PhotoParameter::center_x_px) - 0.5 * size_px,
                 at(result.values, PhotoParameter::center_y_px) - 0.5 * size_px, c.optics.center_dx_px, c.optics.center_dy_px, at(result.values, PhotoParameter::field_radius_px), c.optics.field_radius_px,
+                at(result.values, PhotoParameter::tilt_deg), at(result.values, PhotoParameter::azimuth_deg), c.optics.tilt_deg, c.optics.azimuth_deg,
                 std::sqrt(at(result.values, PhotoParameter::blur_variance_px2)), c.optics.blur_px, camera.white_balance[0], camera.white_balance[1], camera.white_balance[2], camera.look_steepness, camera.light_falloff,
                 outcome.seconds);
     std::fflush(stdout);
@@ -60,13 +62,15 @@ struct BedOutcome {
     int cases = 0, accepted = 0, within_2_percent = 0, within_2_sigma = 0, both = 0, biaxial = 0, biaxial_within_2_percent = 0;
 };
 
-/// The twenty random cases at 128², with their counts and times printed.
-BedOutcome photograph_and_fit_the_bed(testing::Scale scale) {
+/// The twenty random cases at 128², their cuts tilted when the tilt is fitted, with their counts and times printed.
+BedOutcome photograph_and_fit_the_bed(testing::Scale scale, testing::Tilt tilt = testing::Tilt::held) {
     constexpr int kCases = 20, kSize = 128;
     BedOutcome bed;
     std::vector<double> seconds;
     for (int index = 0; index < kCases; ++index) {
-        const CaseOutcome outcome = photograph_and_fit(index, testing::random_case(index, kSize), kSize, scale);
+        testing::CameraCase c = testing::random_case(index, kSize);
+        if (tilt == testing::Tilt::free) c = testing::tilted_case(index, c);
+        const CaseOutcome outcome = photograph_and_fit(index, c, kSize, scale, tilt);
         ++bed.cases;
         bed.accepted += outcome.accepted;
         bed.within_2_percent += outcome.within_2_percent;
@@ -77,9 +81,9 @@ BedOutcome photograph_and_fit_the_bed(testing::Scale scale) {
         seconds.push_back(outcome.seconds);
     }
     std::sort(seconds.begin(), seconds.end());
-    std::printf("%d cases at %d px, scale %s: %d accepted, %d within 2%%, %d within 2 sigma, %d both (biaxial: %d of %d within 2%%); fit time "
+    std::printf("%d cases at %d px, scale %s, tilt %s: %d accepted, %d within 2%%, %d within 2 sigma, %d both (biaxial: %d of %d within 2%%); fit time "
                 "median %.1f s, longest %.1f s\n",
-                kCases, kSize, scale == testing::Scale::known ? "known" : "unknown", bed.accepted, bed.within_2_percent, bed.within_2_sigma, bed.both,
+                kCases, kSize, scale == testing::Scale::known ? "known" : "unknown", tilt == testing::Tilt::held ? "held" : "free", bed.accepted, bed.within_2_percent, bed.within_2_sigma, bed.both,
                 bed.biaxial_within_2_percent, bed.biaxial, 0.5 * (seconds[kCases / 2 - 1] + seconds[kCases / 2]), seconds.back());
     return bed;
 }
@@ -102,6 +106,18 @@ TEST(AcceptanceRealisticCamera, ThicknessWithinTwoPercentInNineOfTenRandomCases)
 TEST(AcceptanceRealisticCamera, ScaleUnknownBiaxialThicknessWithinTwoPercentInNineOfTenRandomCases) {
     const BedOutcome bed = photograph_and_fit_the_bed(testing::Scale::unknown);
     EXPECT_GE(bed.biaxial_within_2_percent, (9 * bed.biaxial + 9) / 10);
+}
+
+// The same twenty cases with their cuts tilted by 2 … 8° toward random azimuths, the tilt fitted from 0 (item 2:
+// "a slightly tilted optic axis"). The figure is found where it lies (the fit's start is centred on it: docs/fitting.md,
+// "Finding the figure"), and the eight uniaxial cases are asserted within 2% but for case 1, the quartz that fails
+// untilted too (7 of 8 measured; without the start at the figure, quartz 2.9 mm went to 596 µm, refused). The biaxial
+// ones are printed, not asserted: 4 of 12 measured, most others refused (docs/fitting.md, "A tilted cut").
+TEST(AcceptanceRealisticCamera, TiltedUniaxialThicknessWithinTwoPercentButTheKnownFailure) {
+    const BedOutcome bed = photograph_and_fit_the_bed(testing::Scale::known, testing::Tilt::free);
+    const int uniaxial = bed.cases - bed.biaxial, uniaxial_within = bed.within_2_percent - bed.biaxial_within_2_percent;
+    std::printf("uniaxial: %d of %d within 2%%\n", uniaxial_within, uniaxial);
+    EXPECT_GE(uniaxial_within, uniaxial - 1);
 }
 
 }  // namespace

@@ -76,6 +76,11 @@ enum class FieldStop { sharp, none };
 /// uneven Köhler illumination, a diffuse source of finite size).
 enum class IlluminationProfile { even, falloff };
 
+/// The camera's sensor: one that measures every colour at every pixel (`full-colour`: a three-sensor camera, a
+/// rendered photo), or an RGGB Bayer mosaic demosaiced by the camera (`bayer`: nearly every colour camera,
+/// phones included), whose interpolation the model does not follow.
+enum class ColourSensor { full_colour, bayer };
+
 /// Everything about the figure that is not fitted.
 struct ConoscopePhotoModel {
     /// NA, polars, stage, surrounding medium, wavelengths (crystal_axes is not used), and whether white light is
@@ -101,6 +106,8 @@ std::string_view field_stop_name(FieldStop stop);
 FieldStop parse_field_stop(std::string_view name);
 std::string_view illumination_name(IlluminationProfile illumination);
 IlluminationProfile parse_illumination(std::string_view name);
+std::string_view colour_sensor_name(ColourSensor sensor);  // "full-colour", "bayer"
+ColourSensor parse_colour_sensor(std::string_view name);   // throws InputError listing the names
 
 /// Starting values for a photo of this size: centre of the image, field radius half the shorter side,
 /// thickness 30 µm, no tilt, unit gains, black 0, gamma 2.2, blur 1 px; the envelope centred, of radius
@@ -113,8 +120,9 @@ struct ConoscopeFitOptions {
     double thickness_min_um = 5.0;    // the global search covers this range
     double thickness_max_um = 5000.0;
     int candidates = 3;               // thickness minima refined by Ceres
-    /// With the centre free and the cut not tilted (tilt held at 0), start the centre where the photo is most nearly
-    /// symmetric under a half turn (docs/fitting.md, "Finding the figure"), not at initial's centre.
+    /// With the centre free and the cut not tilted (tilt held at 0), or tilted a little (tilt free from 0) with no
+    /// field stop, start the centre where the photo is most nearly symmetric under a half turn (docs/fitting.md,
+    /// "Finding the figure"), not at initial's centre.
     bool locate_centre = true;
     double robust_scale = 0.05;       // Cauchy loss: residuals (in photo values, 0 … 1) beyond this count less
     double saturated_level = 0.995;   // pixels with a channel at or above this are not used
@@ -123,6 +131,11 @@ struct ConoscopeFitOptions {
     /// photo is encoded the same way and fitted again from the best fit; the shift of every parameter is
     /// reported and added to its 1σ in quadrature (docs/fitting.md, "The photo's encoding").
     std::function<Image(const Image&)> photo_encoding;
+    /// With a Bayer sensor the fit measures the systematic error of its demosaicing the same way: the best-fit
+    /// model's photo through an RGGB mosaic and bilinear demosaicing (before the camera's curve, as a camera does
+    /// it), fitted again from the best fit; the shift is reported and added to each 1σ in quadrature, apart from
+    /// the encoding's (docs/fitting.md, "The camera's sensor").
+    ColourSensor sensor = ColourSensor::full_colour;
 };
 
 /// One minimum of the cost over thickness on the unblurred photo, at the geometry found on the blurred
@@ -149,6 +162,8 @@ struct ConoscopeFitResult {
     /// The shift of each parameter when the best-fit model's photo goes through options.photo_encoding and
     /// is fitted again: the encoding's systematic error, included in each 1σ. None without an encoding.
     std::optional<PhotoParameters> encoding_shift;
+    /// The same for the Bayer mosaic's demosaicing (options.sensor): none for a full-colour sensor.
+    std::optional<PhotoParameters> mosaic_shift;
     double rms_residual = 0.0;       // photo values, over the pixels used
     double explained_variance = 0.0; // R² of the photo's values over the pixels used
     int pixels_used = 0;
