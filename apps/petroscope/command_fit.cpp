@@ -189,8 +189,10 @@ void run_fit_conoscope(const FitOptions& options, const std::string& minerals_di
     if (jpeg && !options.no_encoding_check) {
         fit.photo_encoding = [encoding = *jpeg](const Image& camera_values) { return encode_like_jpeg(camera_values, encoding); };
     }
-    // A JPEG is a camera's photo, and nearly every colour camera has a Bayer sensor; PNG and TIFF may be rendered.
-    fit.sensor = options.sensor == "auto" ? (jpeg ? ColourSensor::bayer : ColourSensor::full_colour) : parse_colour_sensor(options.sensor);
+    // A colour JPEG is a camera's photo, and nearly every colour camera has a Bayer sensor; PNG and TIFF may be
+    // rendered, and a grey photo comes from a monochrome sensor.
+    const bool colour_jpeg = jpeg && photo_raw.channels >= 3;
+    fit.sensor = options.sensor == "auto" ? (colour_jpeg ? ColourSensor::bayer : ColourSensor::full_colour) : parse_colour_sensor(options.sensor);
 
     // Reserve every output before the work starts: an unwritable folder fails at once, nothing half-written.
     const std::filesystem::path folder(options.output_dir);
@@ -302,7 +304,7 @@ void add_fit_command(CLI::App& app, const std::string& minerals_dir) {
     conoscope->add_option("--sensor", options->sensor,
                           "The camera's sensor: bayer (a colour mosaic, demosaiced: nearly every colour camera; the fit measures what\n"
                           "the demosaicing does to its result and adds it to the 1-sigma values), full-colour (every colour at every\n"
-                          "pixel: a rendered photo), or auto: bayer for a JPEG photo, full-colour otherwise")
+                          "pixel: a rendered photo, a monochrome camera), or auto: bayer for a colour JPEG photo, full-colour otherwise")
         ->capture_default_str()
         ->check(CLI::IsMember({"auto", "bayer", "full-colour"}));
     add_light_options(conoscope, options->light);

@@ -84,6 +84,22 @@ TEST_F(FitCli, JpegPhotoReportsItsEncodingAndItsShift) {
 
 }
 
+// A grey JPEG (a monochrome camera, monochromatic light) is not taken for a Bayer sensor's photo: --sensor auto
+// checks its encoding only.
+TEST_F(FitCli, GreyJpegPhotoIsNotTakenForABayerSensors) {
+    const auto png = quartz_photo("--wavelength 589nm", "grey.png");
+    const std::filesystem::path jpeg = scratch() / "grey.jpg";
+    ASSERT_TRUE(cv::imwrite(jpeg.string(), cv::imread(png.string(), cv::IMREAD_GRAYSCALE), {cv::IMWRITE_JPEG_QUALITY, 90}));
+    const testing::CommandResult run = petroscope("fit conoscope --photo " + testing::quoted(jpeg) +
+                                                  " --mineral quartz --wavelength 589nm --thickness 250um --fix field_radius_px=32 -o " +
+                                                  testing::quoted(out()));
+    ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+    const nlohmann::json report = nlohmann::json::parse(testing::read_text(out() / "report.json"));
+    EXPECT_EQ(report["sensor"], "full-colour");
+    EXPECT_FALSE(report["parameters"]["thickness_um"].contains("mosaic_shift"));
+    EXPECT_TRUE(report["parameters"]["thickness_um"].contains("encoding_shift"));
+}
+
 TEST_F(FitCli, BadPhotosAndOptionsAreRefused) {
     const std::string tail = " --mineral quartz --thickness 250um -o " + testing::quoted(out());
     expect_rejected("fit conoscope --photo " + testing::quoted(scratch() / "missing.png") + tail, {"--photo", "missing.png"});
