@@ -35,6 +35,15 @@ struct OpticsTruth {
     int jpeg_quality = 85;
 };
 
+/// `truth` for a photo `factor` times as wide: the same figure and light, every length on the photo scaled.
+inline OpticsTruth scaled_truth(OpticsTruth truth, double factor) {
+    for (double* length : {&truth.center_dx_px, &truth.center_dy_px, &truth.field_radius_px, &truth.envelope_dx_px, &truth.envelope_dy_px,
+                           &truth.envelope_radius_px}) {
+        *length *= factor;
+    }
+    return truth;
+}
+
 /// |ξ| = sin θ_air of the light a photo shows u field radii from the figure's centre: the projection's law
 /// written with angles (u = sin θ/sin θ_NA, tan θ/tan θ_NA or θ/θ_NA, after distortion); −1 (dark) beyond
 /// grazing.

@@ -313,12 +313,7 @@ TEST_P(RealOpticsFitTest, ThicknessWithinTwoPercentAndTwoSigma) {
     const OpticsCase& c = GetParam();
     const int kSize = c.size_px;
     // The cases are written for 128² photos; a smaller photo shows the same figure and light, scaled.
-    testing::OpticsTruth truth = c.truth;
-    const double scale = kSize / 128.0;
-    for (double* length : {&truth.center_dx_px, &truth.center_dy_px, &truth.field_radius_px, &truth.envelope_dx_px, &truth.envelope_dy_px,
-                           &truth.envelope_radius_px}) {
-        *length *= scale;
-    }
+    const testing::OpticsTruth truth = testing::scaled_truth(c.truth, kSize / 128.0);
     static const testing::PhotoLight light = testing::white_light();
     ConoscopePhotoModel model = testing::photo_model(testing::fit_minerals().find(c.mineral), c.cut);
     std::vector<std::uint8_t> jpeg_file;
@@ -420,6 +415,14 @@ INSTANTIATE_TEST_SUITE_P(
         OpticsCase{"muscovite", Cut::acute_bisectrix, optics(60.0, Projection::sine, 9.0, 10.0, -5.0, 0.04, -3.0, 0.004, {0.9, 1.1, 0.95}, 2.3),
                    true}));
 
+// Frees the figure's, the camera's and the light's terms (thickness … envelope power) but the scale and the tilt.
+void free_figure_and_light_but_scale_and_tilt(ConoscopeFitOptions& options) {
+    for (std::size_t k = 0; k <= index_of(PhotoParameter::envelope_power); ++k) options.free[k] = true;
+    for (const PhotoParameter fixed : {PhotoParameter::field_radius_px, PhotoParameter::tilt_deg, PhotoParameter::azimuth_deg}) {
+        options.free[index_of(fixed)] = false;
+    }
+}
+
 // The fringes' second-order blur (docs/fitting.md, "Blur"): a figure of fine fringes photographed by an ideal camera
 // (pure gamma, no mosaic, no JPEG) after a Gaussian blur of σ = 2 px, the geometry and light of the realistic-camera
 // bed's case 10 (calcite 50.77 µm, sine projection, 24 px off centre). With the blur's phase taken to first order in
@@ -434,10 +437,7 @@ TEST(ConoscopeFit, FineFringesUnderTwoPixelsOfBlurKeepTheirThickness) {
     ConoscopePhotoModel model = testing::photo_model(testing::fit_minerals().find(bed_case.mineral.mineral), bed_case.mineral.cut);
     const Image photo = testing::photo_through_optics(model, light, truth, 128, 7);
     ConoscopeFitOptions options = testing::real_optics_fit(model, truth, {}, 128);  // no JPEG: no encoding check
-    for (std::size_t k = 0; k <= index_of(PhotoParameter::envelope_power); ++k) options.free[k] = true;
-    for (const PhotoParameter fixed : {PhotoParameter::field_radius_px, PhotoParameter::tilt_deg, PhotoParameter::azimuth_deg}) {
-        options.free[index_of(fixed)] = false;
-    }
+    free_figure_and_light_but_scale_and_tilt(options);
     const ConoscopeFitResult result = fit_conoscope_photo(photo, model, options);
     const FittedValue& thickness = result.parameters[index_of(PhotoParameter::thickness_um)];
     const double error = thickness.value / truth.thickness_um - 1.0;
@@ -457,11 +457,7 @@ TEST(ConoscopeFit, FineFringesUnderTwoPixelsOfBlurKeepTheirThickness) {
 TEST(ConoscopeFit, BiaxialFigureOfUnknownScaleIsFoundFromTheSearchAtSeveralScales) {
     constexpr int kSize = 80;
     const testing::CameraCase bed_case = testing::random_case(3, 128);
-    testing::OpticsTruth truth = bed_case.optics;
-    for (double* length : {&truth.center_dx_px, &truth.center_dy_px, &truth.field_radius_px, &truth.envelope_dx_px, &truth.envelope_dy_px,
-                           &truth.envelope_radius_px}) {
-        *length *= kSize / 128.0;
-    }
+    testing::OpticsTruth truth = testing::scaled_truth(bed_case.optics, kSize / 128.0);
     truth.jpeg_quality = 0;
     truth.gains = {1.05, 0.95, 1.0};
     static const testing::PhotoLight light = testing::white_light();
@@ -493,8 +489,7 @@ TEST(ConoscopeFit, BiaxialFigureOfUnknownScaleIsFoundFromTheSearchAtSeveralScale
 TEST(ConoscopeFit, TheMosaicCheckMeasuresWhatABayerSensorDoesToTheModelsOwnPhoto) {
     constexpr int kSize = 64;
     const testing::CameraCase bed_case = testing::random_case(16, 128);
-    testing::OpticsTruth truth = bed_case.optics;
-    for (double* length : {&truth.field_radius_px, &truth.envelope_dx_px, &truth.envelope_dy_px, &truth.envelope_radius_px}) *length *= kSize / 128.0;
+    const testing::OpticsTruth truth = testing::scaled_truth(bed_case.optics, kSize / 128.0);  // centred: the centre stays
     ConoscopePhotoModel model = testing::photo_model(testing::fit_minerals().find(bed_case.mineral.mineral), bed_case.mineral.cut);
     ConoscopeFitOptions options = testing::real_optics_fit(model, truth, {}, kSize);
     PhotoParameters& values = options.initial;
@@ -510,10 +505,7 @@ TEST(ConoscopeFit, TheMosaicCheckMeasuresWhatABayerSensorDoesToTheModelsOwnPhoto
     options.thickness_min_um = 250.0;
     options.thickness_max_um = 450.0;
     options.sensor = ColourSensor::bayer;
-    for (std::size_t k = 0; k <= index_of(PhotoParameter::envelope_power); ++k) options.free[k] = true;
-    for (const PhotoParameter fixed : {PhotoParameter::field_radius_px, PhotoParameter::tilt_deg, PhotoParameter::azimuth_deg}) {
-        options.free[index_of(fixed)] = false;
-    }
+    free_figure_and_light_but_scale_and_tilt(options);
     const ConoscopeFitResult result = fit_conoscope_photo(photo, model, options);
     const FittedValue& thickness = result.parameters[index_of(PhotoParameter::thickness_um)];
     ASSERT_TRUE(result.acceptable) << result.verdict;
