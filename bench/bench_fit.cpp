@@ -4,6 +4,8 @@
 // and without the check of the JPEG encoding's systematic error. Then issue 18's speed goal: the realistic-camera
 // test bed's twenty cases (realistic_camera_case.hpp) at 512², thickness unknown (the default 5 µm – 5 mm
 // search), every nuisance free; and one evaluation of the fit's cost with its Jacobian, most of a refinement's work.
+// Last, the orthoscope fit of one grain from three photos (tests/fit/grain_photo.hpp) in each orientation mode.
+#include "grain_photo.hpp"
 #include "photo_cost.hpp"
 #include "realistic_camera_case.hpp"
 #include "synthetic_photo.hpp"
@@ -108,6 +110,26 @@ void PhotoCostJacobian512(benchmark::State& state) {
     state.counters["samples"] = static_cast<double>(level.evaluator.sample_count());
 }
 BENCHMARK(PhotoCostJacobian512)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// A quartz grain 30 µm thick, photographed at stage 0 and 30° and with the gypsum plate at 0 (the tests' camera:
+// sRGB, noise, JPEG 85), fitted over the default 1–200 µm. Argument: the orientation mode, 0 known, 1 in the
+// section's plane (maximum birefringence, the angle unknown), 2 free.
+void FitOrthoscopeGrain(benchmark::State& state) {
+    testing::GrainPhotos camera;
+    const Mineral& quartz = testing::fit_minerals().find("quartz");
+    const Eigen::Matrix3d axes = euler_zyz_deg(30.0, 70.0, 20.0);
+    const std::vector<GrainPhoto> photos = camera.take("quartz", 30.0, axes, {{0.0, false}, {30.0, false}, {0.0, true}}, 31);
+    const GrainOrientation modes[] = {GrainOrientation::known, GrainOrientation::max_birefringence, GrainOrientation::free};
+    camera.options().orientation = modes[state.range(0)];
+    camera.options().known_axes = axes;
+    for (auto _ : state) {
+        const OrthoscopeFitResult fit = fit_orthoscope_grain(photos, quartz, camera.options(), camera.integrator());
+        std::fprintf(stderr, "retardation %.2f nm, thickness %.3f um, rms %.2f codes\n", fit.retardation_nm.value, fit.thickness_um.value,
+                     255.0 * fit.rms_code);
+        benchmark::DoNotOptimize(fit.rms_code);
+    }
+}
+BENCHMARK(FitOrthoscopeGrain)->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 
