@@ -182,34 +182,35 @@ private:
     std::optional<detail::ReferenceColours> references_;
 };
 
-/// The grain's responses at the orientation last asked for. They are nearly all of a residual's cost (the
-/// eigenmodes at every wavelength and illumination direction), and the numeric derivatives in the thickness and
-/// the camera's terms keep the orientation: with this, a Jacobian of every slot costs 8 responses instead of 19
-/// for a free orientation, 4 for an orientation in the plane and 1 for a known one.
+/// The grain's responses at the indicatrix axes last asked for. They are nearly all of a residual's cost (the
+/// eigenmodes at every wavelength and illumination direction), and most of the numeric derivatives keep the axes:
+/// those in the thickness, the camera's terms and the angles the orientation mode does not use. With this, a
+/// Jacobian of every slot costs 8 responses instead of 19 for a free orientation, 4 for one in the plane and 1 for
+/// a known one.
 class ResponseCache {
 public:
     explicit ResponseCache(const GrainModel& model) : model_(model) {}
 
     const std::vector<GrainResponse>& at(const double* parameters) {
-        const double* angles_deg = parameters + kAngle0;
-        if (!responses_ || !std::equal(angles_deg, angles_deg + 3, angles_deg_.begin())) {
-            responses_ = model_.responses(model_.axes(angles_deg));
-            std::copy(angles_deg, angles_deg + 3, angles_deg_.begin());
+        const Eigen::Matrix3d axes = model_.axes(parameters + kAngle0);
+        if (!responses_ || axes != axes_) {
+            responses_ = model_.responses(axes);
+            axes_ = axes;
         }
         return *responses_;
     }
 
 private:
     const GrainModel& model_;
-    std::array<double, 3> angles_deg_{};
+    Eigen::Matrix3d axes_;
     std::optional<std::vector<GrainResponse>> responses_;
 };
 
 struct ColourCost {
     const GrainModel* model;
-    std::unique_ptr<ResponseCache> cache = std::make_unique<ResponseCache>(*model);
+    mutable ResponseCache cache{*model};
     bool operator()(double const* const* parameters, double* residuals) const {
-        model->residuals(cache->at(parameters[0]), parameters[0], residuals);
+        model->residuals(cache.at(parameters[0]), parameters[0], residuals);
         return true;
     }
 };

@@ -36,13 +36,14 @@ struct GrainCase {
     double angle_deg = 0.0;  // X's angle on the stage, for a grain of maximum birefringence
 };
 
-std::vector<GrainCase> grain_cases(const std::string& mineral_name, unsigned seed, bool max_birefringence) {
+/// Grains of a known random orientation, or (GrainOrientation::max_birefringence) of maximum birefringence at a random angle.
+std::vector<GrainCase> grain_cases(const std::string& mineral_name, unsigned seed, GrainOrientation orientation) {
     std::mt19937_64 rng(seed);
     for (const std::string& name : kMinerals) {
         std::vector<GrainCase> cases;
         for (const double thickness : kThicknesses) {
             GrainCase grain{thickness, Eigen::Matrix3d::Identity(), 0.0};
-            if (max_birefringence) {
+            if (orientation == GrainOrientation::max_birefringence) {
                 grain.angle_deg = 180.0 * uniform_unit_interval(rng);  // X and Z in the section, X at a random angle
                 grain.axes = testing::max_birefringence_axes(grain.angle_deg);
             } else {
@@ -61,7 +62,7 @@ TEST_P(OrthoscopeFitOfMineral, KnownOrientationThicknessWithinHalfAMicrometre) {
     testing::GrainPhotos camera;
     const std::string& name = GetParam();
     const Mineral& mineral = testing::fit_minerals().find(name);
-    for (const GrainCase& grain : grain_cases(name, 6, false)) {
+    for (const GrainCase& grain : grain_cases(name, 6, GrainOrientation::known)) {
         const std::vector<GrainPhoto> photos = camera.take(name, grain.thickness_um, grain.axes, {{30.0, false}, {30.0, true}}, 11);
         camera.options().orientation = GrainOrientation::known;
         camera.options().known_axes = grain.axes;
@@ -81,7 +82,7 @@ TEST_P(OrthoscopeFitOfMineral, UnknownInPlaneOrientationThicknessWithinOneAndAHa
     testing::GrainPhotos camera;
     const std::string& name = GetParam();
     const Mineral& mineral = testing::fit_minerals().find(name);
-    for (const GrainCase& grain : grain_cases(name, 9, true)) {
+    for (const GrainCase& grain : grain_cases(name, 9, GrainOrientation::max_birefringence)) {
         const std::vector<GrainPhoto> photos = camera.take(name, grain.thickness_um, grain.axes, {{0.0, false}, {30.0, false}, {0.0, true}}, 21);
         camera.options().orientation = GrainOrientation::max_birefringence;
         const OrthoscopeFitResult fit = fit_orthoscope_grain(photos, mineral, camera.options(), camera.integrator());
