@@ -121,11 +121,8 @@ public:
     /// 3 colour residuals per photo, then the priors of the 3 relative gains and of the contrast.
     std::size_t residual_count() const { return 3 * photos_.size() + 4; }
 
-    /// Residuals at the parameters: model − photo (code units), 3 per photo, then the priors (zero where the
-    /// terms are held at 1).
-    void residuals(const double* parameters, double* out) const { residuals(responses(axes(parameters + kAngle0)), parameters, out); }
-
-    /// The same with the grain's responses at the parameters' orientation given.
+    /// Residuals at the parameters, given the grain's responses at their orientation: model − photo (code
+    /// units), 3 per photo, then the priors (zero where the terms are held at 1).
     void residuals(const std::vector<GrainResponse>& grain, const double* parameters, double* out) const {
         const Camera at = camera(parameters);
         std::vector<double> spectrum;
@@ -139,9 +136,12 @@ public:
     }
 
     /// The rms of the colour residuals (code units) at the parameters.
-    double colour_rms(const double* parameters) const {
+    double colour_rms(const double* parameters) const { return colour_rms(responses(axes(parameters + kAngle0)), parameters); }
+
+    /// The same with the grain's responses at the parameters' orientation given.
+    double colour_rms(const std::vector<GrainResponse>& grain, const double* parameters) const {
         std::vector<double> out(residual_count());
-        residuals(parameters, out.data());
+        residuals(grain, parameters, out.data());
         double squares = 0.0;
         for (std::size_t r = 0; r < 3 * photos_.size(); ++r) squares += out[r] * out[r];
         return std::sqrt(squares / static_cast<double>(3 * photos_.size()));
@@ -639,7 +639,7 @@ OrthoscopeFitResult fit_orthoscope_grain(const std::vector<GrainPhoto>& photos, 
     const Camera camera = model.camera(best.data());
     std::vector<double> spectrum;
     for (std::size_t k = 0; k < photos.size(); ++k) result.model_code.push_back(model.code(grain[k], best[kThickness], camera, spectrum));
-    result.rms_code = model.colour_rms(best.data());
+    result.rms_code = model.colour_rms(grain, best.data());
     result.acceptable = std::isfinite(result.rms_code) && result.rms_code <= kAcceptableRmsCode;
     result.verdict = result.acceptable
                          ? "the model matches the grain's colours to " + format_significant(255.0 * result.rms_code, 3) + " code levels rms"
