@@ -92,7 +92,7 @@ BedOutcome photograph_and_fit_the_bed(testing::Scale scale, testing::Tilt tilt =
 // first holds (19 of 20) and is asserted. The second does not yet (15 of 20; docs/fitting.md, "Measured through a
 // realistic camera"): most errors are negative and several times the 1σ, which does not see what the model still
 // leaves out (the demosaicing, the look curve, the colour matrix and the optics' blur each move them; there, "What
-// fails"). The counts are printed, and the issue stays open until the second holds too.
+// fails"). The counts are printed; issue 18 is not resolved until the second holds too.
 TEST(AcceptanceRealisticCamera, ThicknessWithinTwoPercentInNineOfTenRandomCases) {
     const BedOutcome bed = photograph_and_fit_the_bed(testing::Scale::known);
     EXPECT_GE(bed.within_2_percent, (9 * bed.cases + 9) / 10);
